@@ -1,0 +1,65 @@
+#pragma once
+// Every hyper-parameter of the calibration, defaults = the paper's Table 1 in SI units.
+// Each struct's validate() throws std::invalid_argument naming the key, value and allowed range.
+
+#include "thermal_lidar_calibration/core/loss.hpp"
+
+#include <cstdint>
+
+namespace thermal_lidar_calibration {
+
+// Algorithm 1 (evolutionary search).
+struct EvolutionConfig {
+  int population_size = 500;            // N_pop
+  int max_iterations = 400;             // iter_max (generations)
+  double rotation_interval_rad = 3.5;   // initial r_i ~ U(-a, a)
+  double translation_interval_m = 1.0;  // initial t_i ~ U(-a, a)
+  double elite_fraction = 0.15;         // pct_elite
+  double crossover_fraction = 0.40;     // pct_crossover
+  int initial_population_factor = 5;    // c2: the first population has c2 * N_pop individuals
+  double sigma_rot_rad = 0.02;          // mutation noise U(-s, s) per rotation component
+  double sigma_trans_m = 0.02;          // mutation noise U(-s, s) per translation component
+  double min_inside_fraction = 0.5;     // initial individual kept if some pair projects >= this
+  void validate() const;
+};
+
+// Algorithm 2 (outlier rejection around Algorithm 1).
+struct OutlierConfig {
+  int min_sample_large = 20;        // min_sample when |D| >= min_sample_switch
+  int min_sample_small = 15;        // min_sample otherwise
+  int min_sample_switch = 40;       // |D| at which the larger subset is used
+  int iterations = 2;               // iter_outlier
+  double ratio_solution = 0.7;      // accept a fit if this fraction of D_val is within threshold
+  double threshold_px = 2.0;        // threshold_sample, Eq. (1) pixels (MS2 rig: 1.5)
+  int minSample(std::size_t pairs) const {
+    return static_cast<int>(pairs) >= min_sample_switch ? min_sample_large : min_sample_small;
+  }
+  void validate() const;
+};
+
+enum class Algorithm : std::uint8_t { kPlain = 1, kOutlierRejection = 2 };
+enum class RefineMode : std::uint8_t { kNone, kLocal };
+
+// Beyond the paper: derivative-free local search on the bilinear loss after the evolution.
+struct RefineConfig {
+  RefineMode mode = RefineMode::kLocal;
+  double initial_step_rot_rad = 0.02;    // first probe size (about the mutation noise)
+  double initial_step_trans_m = 0.02;
+  double min_step_rot_rad = 1e-6;        // stop when the steps shrink below these
+  double min_step_trans_m = 1e-6;
+  int max_evaluations = 20000;
+  void validate() const;
+};
+
+struct CalibrationConfig {
+  Algorithm algorithm = Algorithm::kOutlierRejection;
+  EvolutionConfig evolution;
+  OutlierConfig outlier;
+  RefineConfig refine;
+  double behind_camera_penalty_c1 = 5.0;  // c1 of Eq. (2)
+  std::uint64_t seed = 1;
+  int num_threads = 0;  // 0 = all cores; results do not depend on it
+  void validate() const;
+};
+
+}  // namespace thermal_lidar_calibration

@@ -1,0 +1,35 @@
+#pragma once
+// One kept (person mask, LiDAR person points) pair: what the gate keeps and the optimizer uses.
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace thermal_lidar_calibration {
+
+// A decoded synchronized frame as it arrives from a bag or topics (before gating).
+struct Frame {
+  double stamp_s = 0.0;           // stamp of the image, seconds
+  std::string camera_frame;       // frame_id of the image
+  std::string lidar_frame;        // frame_id of the clusters
+  cv::Mat image;                  // thermal image, CV_8UC1 or CV_16UC1 (may be empty)
+  cv::Mat mask;                   // person mask, CV_8UC1 or CV_16UC1, 0 = background
+  std::vector<Eigen::Vector3f> points;  // finite cluster points, LiDAR frame, metres
+  std::vector<std::int32_t> labels;     // one label per point: one label per person
+  std::size_t nonfinite_points_dropped = 0;  // NaN/inf points removed while decoding
+};
+
+// A pair in the dataset D of the paper.
+struct CalibrationPair {
+  double stamp_s = 0.0;
+  cv::Mat mask;    // CV_8UC1, 1 on person pixels, 0 elsewhere (I^h of the paper)
+  cv::Mat image;   // the thermal image if the source had one (for overlays / dataset bags)
+  std::vector<Eigen::Vector3f> points;  // P^h, LiDAR frame
+  std::vector<std::int32_t> labels;     // kept for dataset bags and overlays
+  int people = 0;                       // people count agreed by both modalities
+};
+
+}  // namespace thermal_lidar_calibration

@@ -1,0 +1,51 @@
+#pragma once
+// The calibration entry point: a dataset and a config in, a result struct out.
+// Never logs, sleeps or reads parameters; progress leaves through a callback that may stop it.
+
+#include "thermal_lidar_calibration/core/calibration_config.hpp"
+#include "thermal_lidar_calibration/core/calibration_pair.hpp"
+#include "thermal_lidar_calibration/core/camera_model.hpp"
+#include "thermal_lidar_calibration/core/extrinsic.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace thermal_lidar_calibration {
+
+struct Progress {
+  std::string stage;            // "outlier_fit 1/2", "final_fit", "plain_fit", "refine"
+  int generation = 0;           // within the stage (refine: iteration)
+  int generations_total = 0;
+  double best_loss = 0.0;       // Eq. (3) of the best individual of the stage so far, pixels
+  std::uint64_t evaluations = 0;  // loss evaluations so far, all stages
+  Extrinsic best;
+};
+// Return false to ask the calibration to stop; it then returns its best so far (stopped = true).
+using ProgressCallback = std::function<bool(const Progress&)>;
+
+struct CalibrationResult {
+  Extrinsic extrinsic;            // final (refined unless refine = none)
+  double loss = 0.0;              // Eq. (3), paper's nearest-pixel rule, on the pairs used
+  double loss_bilinear = 0.0;     // Eq. (3) with the sub-pixel rule, on the pairs used
+  Extrinsic evolution_extrinsic;  // result of Algorithm 1/2 before refinement
+  double evolution_loss = 0.0;    // its Eq. (3), nearest rule, on the pairs used
+  std::vector<double> pair_losses;  // Eq. (1), nearest rule, every input pair at `extrinsic`
+  std::vector<bool> inliers;        // Algorithm 2's isInlier (all true for Algorithm 1)
+  std::size_t pairs_used = 0;
+  std::size_t pairs_collected = 0;
+  int outlier_fits_accepted = 0;    // Algorithm 2 fits with ratio_inliers >= ratio_solution
+  std::uint64_t evaluations = 0;    // Eq. (3) evaluations
+  std::uint64_t points_projected = 0;
+  bool stopped = false;             // the callback asked to stop
+  double seconds = 0.0;             // wall time of calibrate()
+};
+
+// Throws std::invalid_argument on an invalid config, no pairs, too few pairs for Algorithm 2
+// (needs more than min_sample), or pairs that do not match the camera.
+CalibrationResult calibrate(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
+                            const CalibrationConfig& config,
+                            const ProgressCallback& progress = {});
+
+}  // namespace thermal_lidar_calibration

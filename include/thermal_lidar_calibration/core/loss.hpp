@@ -1,0 +1,69 @@
+#pragma once
+// Equations (1)-(3) of the paper, evaluated fast for many candidates at once.
+
+#include "thermal_lidar_calibration/core/calibration_pair.hpp"
+#include "thermal_lidar_calibration/core/camera_model.hpp"
+#include "thermal_lidar_calibration/core/distance_map.hpp"
+#include "thermal_lidar_calibration/core/extrinsic.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace thermal_lidar_calibration {
+
+// How a projected point p (sub-pixel) reads the distance map.
+enum class PixelRule : std::uint8_t {
+  kNearest,   // the paper: round p to the nearest pixel, exact L1 to the nearest person pixel
+  kBilinear,  // sub-pixel: continuous in p (used by the local refinement)
+};
+
+struct LossConfig {
+  double behind_camera_penalty_c1 = 5.0;  // c1 of Eq. 2: z <= 0 scores c1 * max(h, w)
+  PixelRule pixel_rule = PixelRule::kNearest;
+  void validate() const;
+};
+
+// Points of one pair in float32 structure-of-arrays form plus its distance map.
+struct PreparedPair {
+  std::vector<float> x, y, z;
+  DistanceMap distance;
+  explicit PreparedPair(const CalibrationPair& pair);
+};
+
+class LossEvaluator {
+ public:
+  // Builds every pair's distance map once. Throws std::invalid_argument on an empty pair or a
+  // mask whose size differs from the camera.
+  LossEvaluator(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
+                LossConfig config);
+  ~LossEvaluator();
+
+  std::size_t pairCount() const;
+  const CameraModel& camera() const { return camera_; }
+  const LossConfig& config() const { return config_; }
+
+  // Eq. (1): mean psi over the points of pair i.
+  double pairLoss(std::size_t pair, const Extrinsic& extrinsic) const;
+  // Eq. (3) over the given pairs (all pairs when `subset` is empty).
+  double loss(const Extrinsic& extrinsic, const std::vector<std::size_t>& subset = {}) const;
+  // Eq. (3) for many candidates; out[i] for candidates[i]. Parallel over candidates with
+  // `threads` threads (0 = all cores); each candidate's sum runs in a fixed order, so the
+  // numbers do not depend on the thread count.
+  void lossBatch(const std::vector<Extrinsic>& candidates, const std::vector<std::size_t>& subset,
+                 std::vector<double>& out, int threads) const;
+  // Fraction of pair i's points in front of the camera that land inside the image.
+  double insideFraction(std::size_t pair, const Extrinsic& extrinsic) const;
+
+  // Projected points (pair i, candidate) scored so far by this evaluator (for throughput stats).
+  std::uint64_t pointsEvaluated() const;
+
+ private:
+  struct Impl;
+  CameraModel camera_;
+  LossConfig config_;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace thermal_lidar_calibration

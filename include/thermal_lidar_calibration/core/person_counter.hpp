@@ -1,0 +1,23 @@
+#pragma once
+// Counting people in each modality.
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include <cstdint>
+#include <map>
+#include <vector>
+
+namespace thermal_lidar_calibration {
+
+// People in a mask (CV_8UC1 or CV_16UC1): the number of distinct non-zero ids; if all non-zero
+// pixels share one value, the number of 8-connected components of the non-zero pixels.
+int countMaskPeople(const cv::Mat& mask);
+
+// Binary mask (CV_8UC1, 1 = person) from an id mask.
+cv::Mat binarizeMask(const cv::Mat& mask);
+
+// Points per distinct label.
+std::map<std::int32_t, int> clusterSizes(const std::vector<std::int32_t>& labels);
+
+}  // namespace thermal_lidar_calibration

@@ -1,0 +1,44 @@
+#pragma once
+// Pure conversions between ROS messages and core types. Every decode failure throws
+// std::invalid_argument with one line saying what was wrong and what to do.
+
+#include "thermal_lidar_calibration/core/calibration_pair.hpp"
+#include "thermal_lidar_calibration/core/camera_model.hpp"
+
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/PointCloud2.h>
+
+#include <string>
+
+namespace thermal_lidar_calibration {
+namespace ros_io {
+
+// mono8/8UC1 -> CV_8UC1, mono16/16UC1 -> CV_16UC1 (deep copy). `topic` names the source in errors.
+cv::Mat decodeMonoImage(const sensor_msgs::Image& msg, const std::string& topic);
+
+struct DecodedClusters {
+  std::vector<Eigen::Vector3f> points;  // finite points only
+  std::vector<std::int32_t> labels;
+  std::size_t nonfinite_dropped = 0;
+};
+// float32 x, y, z plus an integer (any int/uint width) or float `label` field.
+DecodedClusters decodeClusters(const sensor_msgs::PointCloud2& msg, const std::string& topic);
+
+// K, size and plumb_bob (or empty/none) distortion. Throws on other models or a zero K.
+CameraModel cameraModelFromMsg(const sensor_msgs::CameraInfo& msg);
+sensor_msgs::CameraInfo cameraInfoFromModel(const CameraModel& camera);
+
+// One synchronized candidate: image, mask and clusters decoded into a core Frame.
+Frame decodeFrame(const sensor_msgs::Image& image, const sensor_msgs::Image& mask,
+                  const sensor_msgs::PointCloud2& clusters, const std::string& image_topic,
+                  const std::string& mask_topic, const std::string& clusters_topic);
+
+// Encoders, for the generator and dataset bags.
+sensor_msgs::Image encodeMonoImage(const cv::Mat& mat, const std::string& frame_id, double stamp_s);
+sensor_msgs::PointCloud2 encodeClusters(const std::vector<Eigen::Vector3f>& points,
+                                        const std::vector<std::int32_t>& labels,
+                                        const std::string& frame_id, double stamp_s);
+
+}  // namespace ros_io
+}  // namespace thermal_lidar_calibration

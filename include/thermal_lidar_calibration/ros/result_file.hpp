@@ -1,0 +1,29 @@
+#pragma once
+// The YAML result file of INTERFACE.md (plus per-pair detail, parameters, seed, run time),
+// and a reader for result / truth files (same keys).
+
+#include "thermal_lidar_calibration/core/calibrator.hpp"
+#include "thermal_lidar_calibration/ros/parameters.hpp"
+
+#include <string>
+#include <vector>
+
+namespace thermal_lidar_calibration {
+namespace ros_io {
+
+struct ResultContext {
+  std::string lidar_frame;
+  std::string camera_frame;
+  std::string source;                  // bag path or "live"
+  std::vector<double> pair_stamps_s;   // one per collected pair, same order as the result
+  CoreParameters parameters;
+};
+
+// Throws std::runtime_error if the file cannot be written (says the path and the reason).
+void writeResultFile(const std::string& path, const CalibrationResult& result,
+                     const ResultContext& context);
+// Reads rotation_vector (or rotation_matrix) and translation. Throws std::invalid_argument.
+Extrinsic readExtrinsicFile(const std::string& path);
+
+}  // namespace ros_io
+}  // namespace thermal_lidar_calibration

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Builds the package in a catkin workspace (default: .ws/ inside the checkout, or $TLC_WS) whose
+# src/ holds a symlink to this repository. Prints the workspace path on the last line.
+# Usage: scripts/build.sh [--tests]     (--tests also builds the gtest/rostest targets)
+set -euo pipefail
+# Debian's ROS tools need Debian's python3, not a pyenv one that may be first on PATH.
+export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+ws="${TLC_WS:-$repo/.ws}"
+mkdir -p "$ws/src"
+ln -sfn "$repo" "$ws/src/thermal_lidar_calibration"
+jobs="${TLC_JOBS:-$(nproc)}"
+cd "$ws"
+catkin_make -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON -j"$jobs" >&2
+if [ "${1:-}" = "--tests" ]; then
+  catkin_make tests -j"$jobs" >&2
+fi
+echo "$ws"
