@@ -39,6 +39,10 @@ class LossEvaluator {
   LossEvaluator(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
                 LossConfig config);
   ~LossEvaluator();
+  LossEvaluator(LossEvaluator&&) noexcept;
+
+  // The same pairs and distance maps read with another pixel rule (shares the prepared data).
+  LossEvaluator withPixelRule(PixelRule rule) const;
 
   std::size_t pairCount() const;
   const CameraModel& camera() const { return camera_; }
@@ -61,9 +65,10 @@ class LossEvaluator {
 
  private:
   struct Impl;
+  LossEvaluator(CameraModel camera, LossConfig config, std::shared_ptr<Impl> impl);
   CameraModel camera_;
   LossConfig config_;
-  std::unique_ptr<Impl> impl_;
+  std::shared_ptr<Impl> impl_;
 };
 
 }  // namespace thermal_lidar_calibration

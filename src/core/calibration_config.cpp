@@ -1,0 +1,75 @@
+#include "thermal_lidar_calibration/core/calibration_config.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace thermal_lidar_calibration {
+namespace {
+
+template <typename T>
+void requireRange(const char* key, T value, T lo, T hi, bool lo_open = false) {
+  const bool ok = std::isfinite(static_cast<double>(value)) &&
+                  (lo_open ? value > lo : value >= lo) && value <= hi;
+  if (!ok) {
+    std::ostringstream s;
+    s << "parameter '" << key << "' = " << value << ": must be in " << (lo_open ? "(" : "[")
+      << lo << ", " << hi << "]";
+    throw std::invalid_argument(s.str());
+  }
+}
+
+}  // namespace
+
+void LossConfig::validate() const {
+  requireRange("behind_camera_penalty_c1", behind_camera_penalty_c1, 0.0, 1e6, true);
+}
+
+void EvolutionConfig::validate() const {
+  requireRange("population_size", population_size, 2, 100000);
+  requireRange("max_iterations", max_iterations, 1, 100000);
+  requireRange("rotation_interval_rad", rotation_interval_rad, 0.0, 10.0, true);
+  requireRange("translation_interval_m", translation_interval_m, 0.0, 1000.0, true);
+  requireRange("elite_fraction", elite_fraction, 0.0, 1.0);
+  requireRange("crossover_fraction", crossover_fraction, 0.0, 1.0);
+  if (elite_fraction + crossover_fraction > 1.0 + 1e-12) {
+    throw std::invalid_argument("parameters 'elite_fraction' + 'crossover_fraction' = " +
+                                std::to_string(elite_fraction + crossover_fraction) +
+                                ": must not exceed 1");
+  }
+  requireRange("initial_population_factor", initial_population_factor, 1, 1000);
+  requireRange("sigma_rot_rad", sigma_rot_rad, 0.0, 3.5, true);
+  requireRange("sigma_trans_m", sigma_trans_m, 0.0, 100.0, true);
+  requireRange("min_inside_fraction", min_inside_fraction, 0.0, 1.0);
+}
+
+void OutlierConfig::validate() const {
+  requireRange("min_sample_large", min_sample_large, 1, 100000);
+  requireRange("min_sample_small", min_sample_small, 1, 100000);
+  requireRange("min_sample_switch", min_sample_switch, 1, 100000);
+  requireRange("outlier_iterations", iterations, 0, 1000);
+  requireRange("ratio_solution", ratio_solution, 0.0, 1.0);
+  requireRange("threshold_sample_px", threshold_px, 0.0, 1e6, true);
+}
+
+void RefineConfig::validate() const {
+  requireRange("refine_initial_step_rot_rad", initial_step_rot_rad, 0.0, 1.0, true);
+  requireRange("refine_initial_step_trans_m", initial_step_trans_m, 0.0, 10.0, true);
+  requireRange("refine_min_step_rot_rad", min_step_rot_rad, 0.0, initial_step_rot_rad, true);
+  requireRange("refine_min_step_trans_m", min_step_trans_m, 0.0, initial_step_trans_m, true);
+  requireRange("refine_max_evaluations", max_evaluations, 1, 100000000);
+}
+
+void CalibrationConfig::validate() const {
+  if (algorithm != Algorithm::kPlain && algorithm != Algorithm::kOutlierRejection) {
+    throw std::invalid_argument("parameter 'algorithm': must be 1 or 2");
+  }
+  evolution.validate();
+  outlier.validate();
+  refine.validate();
+  LossConfig{behind_camera_penalty_c1, PixelRule::kNearest}.validate();
+  requireRange("num_threads", num_threads, 0, 1024);
+}
+
+}  // namespace thermal_lidar_calibration

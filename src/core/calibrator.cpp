@@ -1,0 +1,99 @@
+#include "thermal_lidar_calibration/core/calibrator.hpp"
+
+#include "thermal_lidar_calibration/core/evolutionary_optimizer.hpp"
+#include "thermal_lidar_calibration/core/local_refinement.hpp"
+#include "thermal_lidar_calibration/core/outlier_rejection.hpp"
+
+#include <chrono>
+#include <numeric>
+#include <stdexcept>
+
+namespace thermal_lidar_calibration {
+
+CalibrationResult calibrate(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
+                            const CalibrationConfig& config, const ProgressCallback& progress) {
+  const auto started = std::chrono::steady_clock::now();
+  config.validate();
+  if (pairs.empty()) {
+    throw std::invalid_argument("calibration: no pairs were collected");
+  }
+  const LossEvaluator nearest(camera, pairs,
+                              LossConfig{config.behind_camera_penalty_c1, PixelRule::kNearest});
+  Rng rng(config.seed);
+  CalibrationResult result;
+  result.pairs_collected = pairs.size();
+
+  std::uint64_t evaluations_before_stage = 0;
+  auto report = [&](const std::string& stage, int generation, int total, double best,
+                    const Extrinsic& e, std::uint64_t stage_evaluations) {
+    if (!progress) return true;
+    Progress p;
+    p.stage = stage;
+    p.generation = generation;
+    p.generations_total = total;
+    p.best_loss = best;
+    p.evaluations = evaluations_before_stage + stage_evaluations;
+    p.best = e;
+    return progress(p);
+  };
+  const int generations = config.evolution.max_iterations;
+
+  std::vector<std::size_t> used(pairs.size());
+  std::iota(used.begin(), used.end(), std::size_t{0});
+  EvolutionOutcome fit;
+  if (config.algorithm == Algorithm::kOutlierRejection) {
+    const OutlierRejection algorithm2(nearest, config.evolution, config.outlier,
+                                      config.num_threads);
+    const OutlierOutcome outcome = algorithm2.run(
+        rng, [&](const std::string& stage, int g, double best, const Extrinsic& e,
+                 std::uint64_t evals) { return report(stage, g, generations, best, e, evals); });
+    fit = outcome.final_fit;
+    result.inliers = outcome.inliers;
+    result.outlier_fits_accepted = outcome.fits_accepted;
+    result.evaluations = outcome.evaluations;
+    result.stopped = outcome.stopped;
+    used.clear();
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      if (outcome.inliers[i]) used.push_back(i);
+    }
+  } else {
+    const EvolutionaryOptimizer algorithm1(nearest, config.evolution, config.num_threads);
+    fit = algorithm1.run(used, rng, [&](int g, double best, const Extrinsic& e,
+                                        std::uint64_t evals) {
+      return report("plain_fit", g, generations, best, e, evals);
+    });
+    result.inliers.assign(pairs.size(), true);
+    result.evaluations = fit.evaluations;
+    result.stopped = fit.stopped;
+  }
+  result.evolution_extrinsic = fit.best;
+  result.evolution_loss = nearest.loss(fit.best, used);
+  result.extrinsic = fit.best;
+
+  if (config.refine.mode == RefineMode::kLocal && !result.stopped) {
+    const LossEvaluator bilinear = nearest.withPixelRule(PixelRule::kBilinear);
+    const LocalRefinement refinement(bilinear, config.refine, config.num_threads);
+    evaluations_before_stage = result.evaluations;
+    const RefineOutcome refined = refinement.run(
+        fit.best, used, [&](int iteration, double loss, const Extrinsic& e, std::uint64_t evals) {
+          return report("refine", iteration, 0, loss, e, evals);
+        });
+    result.extrinsic = refined.best;
+    result.evaluations += refined.evaluations;
+    result.stopped = refined.stopped;
+  }
+
+  result.pairs_used = used.size();
+  result.loss = nearest.loss(result.extrinsic, used);
+  result.loss_bilinear = nearest.withPixelRule(PixelRule::kBilinear).loss(result.extrinsic, used);
+  result.pair_losses.resize(pairs.size());
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    result.pair_losses[i] = nearest.pairLoss(i, result.extrinsic);
+  }
+  result.points_projected = nearest.pointsEvaluated();
+  result.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return result;
+}
+
+}  // namespace thermal_lidar_calibration

@@ -1,0 +1,102 @@
+#include "thermal_lidar_calibration/core/local_refinement.hpp"
+
+#include <array>
+
+namespace thermal_lidar_calibration {
+namespace {
+
+using Vector6 = Eigen::Matrix<double, 6, 1>;
+
+Vector6 toVector(const Extrinsic& e) {
+  Vector6 v;
+  v << e.rotation_vector, e.translation;
+  return v;
+}
+
+Extrinsic fromVector(const Vector6& v) { return Extrinsic{v.head<3>(), v.tail<3>()}; }
+
+}  // namespace
+
+LocalRefinement::LocalRefinement(const LossEvaluator& loss, RefineConfig config, int threads)
+    : loss_(loss), config_(config), threads_(threads) {
+  config_.validate();
+}
+
+RefineOutcome LocalRefinement::run(const Extrinsic& start, const std::vector<std::size_t>& pairs,
+                                   const RefineCallback& callback) const {
+  RefineOutcome out;
+  Vector6 x = toVector(start);
+  Vector6 step;
+  step << Eigen::Vector3d::Constant(config_.initial_step_rot_rad),
+      Eigen::Vector3d::Constant(config_.initial_step_trans_m);
+  const Vector6 min_step = (Vector6() << Eigen::Vector3d::Constant(config_.min_step_rot_rad),
+                            Eigen::Vector3d::Constant(config_.min_step_trans_m))
+                               .finished();
+  std::vector<double> losses;
+  auto evaluate = [&](const std::vector<Extrinsic>& candidates) {
+    loss_.lossBatch(candidates, pairs, losses, threads_);
+    out.evaluations += candidates.size();
+  };
+  evaluate({fromVector(x)});
+  double fx = losses[0];
+
+  while (static_cast<int>(out.evaluations) < config_.max_evaluations) {
+    if ((step.array() < min_step.array()).all()) {
+      out.converged = true;
+      break;
+    }
+    ++out.iterations;
+    // Exploratory probes: +-step along each parameter, evaluated together (one parallel batch).
+    std::vector<Extrinsic> probes;
+    for (int k = 0; k < 6; ++k) {
+      for (double sign : {1.0, -1.0}) {
+        Vector6 y = x;
+        y[k] += sign * step[k];
+        probes.push_back(fromVector(y));
+      }
+    }
+    evaluate(probes);
+    Vector6 combined = Vector6::Zero();
+    int best_probe = -1;
+    double best_loss = fx;
+    for (int k = 0; k < 6; ++k) {
+      const double plus = losses[2 * k], minus = losses[2 * k + 1];
+      if (std::min(plus, minus) < fx) combined[k] = plus <= minus ? step[k] : -step[k];
+      for (int j = 0; j < 2; ++j) {
+        if (losses[2 * k + j] < best_loss) {
+          best_loss = losses[2 * k + j];
+          best_probe = 2 * k + j;
+        }
+      }
+    }
+    if (best_probe < 0) {
+      step *= 0.5;  // nothing improves at this scale: look closer
+    } else {
+      // Take the better of the best single probe and the move along every improving axis, then
+      // keep moving in that direction while it pays (the pattern move of Hooke-Jeeves).
+      Vector6 direction = toVector(probes[best_probe]) - x;
+      evaluate({fromVector(x + combined)});
+      if (losses[0] < best_loss) {
+        best_loss = losses[0];
+        direction = combined;
+      }
+      x += direction;
+      fx = best_loss;
+      while (static_cast<int>(out.evaluations) < config_.max_evaluations) {
+        evaluate({fromVector(x + direction)});
+        if (!(losses[0] < fx)) break;
+        x += direction;
+        fx = losses[0];
+      }
+    }
+    if (callback && !callback(out.iterations, fx, fromVector(x), out.evaluations)) {
+      out.stopped = true;
+      break;
+    }
+  }
+  out.best = fromVector(x);
+  out.loss = fx;
+  return out;
+}
+
+}  // namespace thermal_lidar_calibration

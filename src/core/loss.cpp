@@ -1,0 +1,193 @@
+#include "thermal_lidar_calibration/core/loss.hpp"
+
+#include "loss_kernels.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+namespace thermal_lidar_calibration {
+namespace {
+
+using Params = std::array<float, 12>;
+
+// Candidates swept together over one pair's points before moving to the next pair, so the
+// pair's points and distance map stay in cache.
+constexpr std::size_t kCandidateBlock = 16;
+
+kernels::MapView viewOf(const DistanceMap& d) {
+  return {d.data(), d.width(), static_cast<float>(d.x0()), static_cast<float>(d.y0()),
+          static_cast<float>(d.x0() + d.width() - 1), static_cast<float>(d.y0() + d.height() - 1)};
+}
+
+kernels::Points pointsOf(const PreparedPair& p) {
+  return {p.x.data(), p.y.data(), p.z.data(), static_cast<int>(p.x.size())};
+}
+
+}  // namespace
+
+PreparedPair::PreparedPair(const CalibrationPair& pair) : distance(pair.mask) {
+  x.reserve(pair.points.size());
+  y.reserve(pair.points.size());
+  z.reserve(pair.points.size());
+  for (const Eigen::Vector3f& p : pair.points) {
+    x.push_back(p.x());
+    y.push_back(p.y());
+    z.push_back(p.z());
+  }
+}
+
+struct LossEvaluator::Impl {
+  std::vector<PreparedPair> pairs;
+  kernels::Lens lens{};
+  bool distorted = false;
+  float penalty = 0.0f;
+  Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
+  mutable std::atomic<std::uint64_t> points{0};
+
+  // Fold K into [R | t] when there is no distortion: one mat-vec and one reciprocal per point.
+  Params paramsOf(const Extrinsic& e) const {
+    Eigen::Matrix<double, 3, 4> m;
+    m.leftCols<3>() = e.rotationMatrix();
+    m.col(3) = e.translation;
+    if (!distorted) m = K * m;
+    Params out;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 4; ++c) out[r * 4 + c] = static_cast<float>(m(r, c));
+    }
+    return out;
+  }
+
+  float sumPsi(const Params& m, const PreparedPair& pair, PixelRule rule) const {
+    const kernels::MapView map = viewOf(pair.distance);
+    const kernels::Points pts = pointsOf(pair);
+    if (rule == PixelRule::kNearest) {
+      return distorted ? kernels::sumPsiNearestDistorted(m.data(), lens, pts, map, penalty)
+                       : kernels::sumPsiNearestPinhole(m.data(), pts, map, penalty);
+    }
+    return distorted ? kernels::sumPsiBilinearDistorted(m.data(), lens, pts, map, penalty)
+                     : kernels::sumPsiBilinearPinhole(m.data(), pts, map, penalty);
+  }
+
+  double pairLoss(const Params& m, std::size_t i, PixelRule rule) const {
+    const PreparedPair& pair = pairs[i];
+    return static_cast<double>(sumPsi(m, pair, rule)) / static_cast<double>(pair.x.size());
+  }
+};
+
+LossEvaluator::LossEvaluator(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
+                             LossConfig config)
+    : camera_(camera), config_(config), impl_(std::make_shared<Impl>()) {
+  camera_.validate();
+  config_.validate();
+  impl_->pairs.reserve(pairs.size());
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const CalibrationPair& p = pairs[i];
+    const std::string where = "pair " + std::to_string(i) + ": ";
+    if (p.points.empty()) throw std::invalid_argument(where + "has no LiDAR points");
+    if (p.mask.cols != camera_.width || p.mask.rows != camera_.height) {
+      throw std::invalid_argument(where + "mask is " + std::to_string(p.mask.cols) + "x" +
+                                  std::to_string(p.mask.rows) + " but the camera is " +
+                                  std::to_string(camera_.width) + "x" +
+                                  std::to_string(camera_.height));
+    }
+    try {
+      impl_->pairs.emplace_back(p);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(where + e.what());
+    }
+  }
+  impl_->distorted = camera_.hasDistortion();
+  impl_->K = camera_.K();
+  const auto f = [](double v) { return static_cast<float>(v); };
+  impl_->lens = {f(camera_.fx), f(camera_.fy), f(camera_.cx), f(camera_.cy), f(camera_.skew),
+                 f(camera_.distortion[0]), f(camera_.distortion[1]), f(camera_.distortion[2]),
+                 f(camera_.distortion[3]), f(camera_.distortion[4])};
+  impl_->penalty = static_cast<float>(config_.behind_camera_penalty_c1 *
+                                      std::max(camera_.width, camera_.height));
+}
+
+LossEvaluator::LossEvaluator(CameraModel camera, LossConfig config, std::shared_ptr<Impl> impl)
+    : camera_(std::move(camera)), config_(config), impl_(std::move(impl)) {}
+
+LossEvaluator::~LossEvaluator() = default;
+LossEvaluator::LossEvaluator(LossEvaluator&&) noexcept = default;
+
+LossEvaluator LossEvaluator::withPixelRule(PixelRule rule) const {
+  LossConfig config = config_;
+  config.pixel_rule = rule;
+  return LossEvaluator(camera_, config, impl_);
+}
+
+std::size_t LossEvaluator::pairCount() const { return impl_->pairs.size(); }
+
+double LossEvaluator::pairLoss(std::size_t pair, const Extrinsic& extrinsic) const {
+  impl_->points += impl_->pairs.at(pair).x.size();
+  return impl_->pairLoss(impl_->paramsOf(extrinsic), pair, config_.pixel_rule);
+}
+
+double LossEvaluator::loss(const Extrinsic& extrinsic, const std::vector<std::size_t>& subset) const {
+  std::vector<double> out;
+  lossBatch({extrinsic}, subset, out, 1);
+  return out.front();
+}
+
+void LossEvaluator::lossBatch(const std::vector<Extrinsic>& candidates,
+                              const std::vector<std::size_t>& subset, std::vector<double>& out,
+                              int threads) const {
+  std::vector<std::size_t> all;
+  const std::vector<std::size_t>* pairs = &subset;
+  if (subset.empty()) {
+    all.resize(impl_->pairs.size());
+    std::iota(all.begin(), all.end(), std::size_t{0});
+    pairs = &all;
+  }
+  if (pairs->empty()) throw std::invalid_argument("loss: no pairs to evaluate");
+  for (std::size_t i : *pairs) {
+    if (i >= impl_->pairs.size()) throw std::invalid_argument("loss: pair index out of range");
+  }
+  const std::size_t n = candidates.size();
+  out.assign(n, 0.0);
+  std::vector<Params> params(n);
+  for (std::size_t c = 0; c < n; ++c) params[c] = impl_->paramsOf(candidates[c]);
+
+  const int blocks = static_cast<int>((n + kCandidateBlock - 1) / kCandidateBlock);
+  int team = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  team = std::max(1, std::min(team, blocks));
+  const PixelRule rule = config_.pixel_rule;
+  const double pair_count = static_cast<double>(pairs->size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(team)
+  for (int b = 0; b < blocks; ++b) {
+    const std::size_t begin = static_cast<std::size_t>(b) * kCandidateBlock;
+    const std::size_t end = std::min(n, begin + kCandidateBlock);
+    std::array<double, kCandidateBlock> sums{};
+    // Each candidate's sum runs over the pairs in the same order in any block or thread.
+    for (std::size_t pi : *pairs) {
+      for (std::size_t c = begin; c < end; ++c) {
+        sums[c - begin] += impl_->pairLoss(params[c], pi, rule);
+      }
+    }
+    for (std::size_t c = begin; c < end; ++c) out[c] = sums[c - begin] / pair_count;
+  }
+  std::uint64_t per_candidate = 0;
+  for (std::size_t pi : *pairs) per_candidate += impl_->pairs[pi].x.size();
+  impl_->points += per_candidate * n;
+}
+
+double LossEvaluator::insideFraction(std::size_t pair, const Extrinsic& extrinsic) const {
+  const PreparedPair& p = impl_->pairs.at(pair);
+  const Params m = impl_->paramsOf(extrinsic);
+  const int inside = kernels::countInside(m.data(), impl_->distorted, impl_->lens, pointsOf(p),
+                                          camera_.width, camera_.height);
+  return static_cast<double>(inside) / static_cast<double>(p.x.size());
+}
+
+std::uint64_t LossEvaluator::pointsEvaluated() const { return impl_->points.load(); }
+
+}  // namespace thermal_lidar_calibration

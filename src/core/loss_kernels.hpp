@@ -1,0 +1,43 @@
+#pragma once
+// Internal: the inner loops of Eq. (1)-(2). One candidate, one pair's points, summed psi.
+// Kept apart from loss.cpp so the hot code is small and compiled once per CPU level.
+
+#include <cstdint>
+
+namespace thermal_lidar_calibration {
+namespace kernels {
+
+// The distance map of one pair, cropped to its people's box (see distance_map.hpp).
+struct MapView {
+  const float* values;
+  int width;
+  float x0, y0, x1, y1;  // crop box, inclusive pixel-centre bounds
+};
+
+// Lens terms used only by the distorted kernels.
+struct Lens {
+  float fx, fy, cx, cy, skew, k1, k2, p1, p2, k3;
+};
+
+// m: row-major 3x4. Pinhole kernels expect K [R | t] (one mat-vec and one reciprocal per point);
+// distorted kernels expect [R | t] and apply the lens after the division.
+struct Points {
+  const float* x;
+  const float* y;
+  const float* z;
+  int count;
+};
+
+float sumPsiNearestPinhole(const float* m, const Points& p, const MapView& map, float penalty);
+float sumPsiNearestDistorted(const float* m, const Lens& lens, const Points& p, const MapView& map,
+                             float penalty);
+float sumPsiBilinearPinhole(const float* m, const Points& p, const MapView& map, float penalty);
+float sumPsiBilinearDistorted(const float* m, const Lens& lens, const Points& p,
+                              const MapView& map, float penalty);
+
+// Points in front of the camera whose nearest pixel lies inside a width x height image.
+int countInside(const float* m, bool distorted, const Lens& lens, const Points& p, int width,
+                int height);
+
+}  // namespace kernels
+}  // namespace thermal_lidar_calibration
