@@ -1,0 +1,137 @@
+#include "thermal_lidar_calibration/core/dataset_builder.hpp"
+
+#include "thermal_lidar_calibration/core/person_counter.hpp"
+
+#include <algorithm>
+#include <exception>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+namespace thermal_lidar_calibration {
+
+namespace {
+
+std::string sizeString(int width, int height) {
+  return std::to_string(width) + "x" + std::to_string(height);
+}
+
+// Throws std::invalid_argument with a one-line, user-actionable reason if the decoded frame
+// cannot be used with this camera.
+void checkFrame(const Frame& frame, const CameraModel& camera) {
+  if (frame.mask.cols != camera.width || frame.mask.rows != camera.height) {
+    throw std::invalid_argument(
+        "mask is " + sizeString(frame.mask.cols, frame.mask.rows) + " but camera_info says " +
+        sizeString(camera.width, camera.height) +
+        ": the mask must be the segmentation of the thermal image described by camera_info");
+  }
+  if (frame.mask.type() != CV_8UC1 && frame.mask.type() != CV_16UC1) {
+    throw std::invalid_argument("mask has OpenCV type " + cv::typeToString(frame.mask.type()) +
+                                ": expected mono8/8UC1 or mono16/16UC1");
+  }
+  if (!frame.image.empty()) {
+    if (frame.image.cols != frame.mask.cols || frame.image.rows != frame.mask.rows) {
+      throw std::invalid_argument(
+          "image is " + sizeString(frame.image.cols, frame.image.rows) + " but mask is " +
+          sizeString(frame.mask.cols, frame.mask.rows) +
+          ": the mask must be the segmentation of that image");
+    }
+    if (frame.image.type() != CV_8UC1 && frame.image.type() != CV_16UC1) {
+      throw std::invalid_argument("thermal image has OpenCV type " +
+                                  cv::typeToString(frame.image.type()) +
+                                  ": expected mono8/8UC1 or mono16/16UC1");
+    }
+  }
+  if (frame.points.size() != frame.labels.size()) {
+    throw std::invalid_argument("clusters have " + std::to_string(frame.points.size()) +
+                                " points but " + std::to_string(frame.labels.size()) +
+                                " labels: every point needs exactly one label");
+  }
+}
+
+}  // namespace
+
+DatasetBuilder::DatasetBuilder(CameraModel camera, GateConfig config)
+    : camera_(std::move(camera)), gate_(config) {
+  camera_.validate();
+}
+
+OfferOutcome DatasetBuilder::offer(const std::function<Frame()>& decode) {
+  OfferOutcome outcome;
+  if (gate_.consumeSkip()) {
+    outcome.decision = GateDecision::kSkipped;
+    return outcome;
+  }
+
+  Frame frame;
+  std::map<std::int32_t, int> sizes;
+  try {
+    frame = decode();
+    checkFrame(frame, camera_);
+    const bool have_frames = !camera_frame_.empty() || !lidar_frame_.empty();
+    if (have_frames &&
+        (frame.camera_frame != camera_frame_ || frame.lidar_frame != lidar_frame_)) {
+      throw std::invalid_argument("frame ids changed: camera '" + frame.camera_frame +
+                                  "', lidar '" + frame.lidar_frame + "' but earlier pairs used '" +
+                                  camera_frame_ + "', '" + lidar_frame_ +
+                                  "': all frames must come from the same two sensors");
+    }
+    outcome.mask_people = countMaskPeople(frame.mask);
+    sizes = clusterSizes(frame.labels);
+    outcome.cluster_people = static_cast<int>(sizes.size());
+  } catch (const std::invalid_argument& e) {
+    gate_.recordBadMessage();
+    outcome.decision = GateDecision::kBadMessage;
+    outcome.error = e.what();
+    return outcome;
+  } catch (const std::exception& e) {
+    gate_.recordBadMessage();
+    outcome.decision = GateDecision::kBadMessage;
+    outcome.error = std::string("could not decode the frame: ") + e.what();
+    return outcome;
+  }
+
+  gate_.counts().nonfinite_points_dropped += frame.nonfinite_points_dropped;
+
+  int smallest = std::numeric_limits<int>::max();
+  for (const auto& label_size : sizes) smallest = std::min(smallest, label_size.second);
+
+  outcome.decision = gate_.decide(outcome.mask_people, outcome.cluster_people, smallest);
+  if (outcome.decision != GateDecision::kKept) return outcome;
+
+  CalibrationPair pair;
+  pair.stamp_s = frame.stamp_s;
+  pair.mask = binarizeMask(frame.mask);
+  // A decoder may wrap a message buffer (cv_bridge::toCvShare): keep a copy we own.
+  pair.image = frame.image.u != nullptr ? frame.image : frame.image.clone();
+  pair.points = std::move(frame.points);
+  pair.labels = std::move(frame.labels);
+  pair.people = outcome.mask_people;
+  pairs_.push_back(std::move(pair));
+  if (camera_frame_.empty() && lidar_frame_.empty()) {
+    camera_frame_ = frame.camera_frame;
+    lidar_frame_ = frame.lidar_frame;
+  }
+  return outcome;
+}
+
+void DatasetBuilder::addExistingPair(CalibrationPair pair) {
+  if (pair.mask.cols != camera_.width || pair.mask.rows != camera_.height) {
+    throw std::invalid_argument("stored pair mask is " + sizeString(pair.mask.cols, pair.mask.rows) +
+                                " but camera_info says " + sizeString(camera_.width, camera_.height) +
+                                ": the dataset was recorded with a different camera");
+  }
+  pair.mask = binarizeMask(pair.mask);  // accept 0/1, 0/255 or id masks; store 0/1
+  pairs_.push_back(std::move(pair));
+}
+
+void DatasetBuilder::reset() {
+  pairs_.clear();
+  gate_.reset();
+  camera_frame_.clear();
+  lidar_frame_.clear();
+}
+
+}  // namespace thermal_lidar_calibration

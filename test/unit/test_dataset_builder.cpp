@@ -1,0 +1,265 @@
+// The shared ingest path: skip rule before decoding, decode errors counted (never fatal),
+// validation against the camera, people counts, gate, and the pairs it builds.
+
+#include "thermal_lidar_calibration/core/dataset_builder.hpp"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/core.hpp>
+
+#include <stdexcept>
+#include <string>
+
+namespace tlc = thermal_lidar_calibration;
+using tlc::GateDecision;
+
+namespace {
+
+constexpr int kWidth = 64;
+constexpr int kHeight = 48;
+
+tlc::CameraModel camera(int width = kWidth, int height = kHeight) {
+  tlc::CameraModel c;
+  c.width = width;
+  c.height = height;
+  c.fx = 50.0;
+  c.fy = 50.0;
+  c.cx = width / 2.0;
+  c.cy = height / 2.0;
+  return c;
+}
+
+tlc::GateConfig gate(int skip_frames = 3, int min_points = 3) {
+  tlc::GateConfig g;
+  g.max_people = 3;
+  g.skip_frames = skip_frames;
+  g.min_points_per_cluster = min_points;
+  return g;
+}
+
+// A frame with `people` persons in the mask (ids 1..people) and `points_each` points per
+// person cluster (labels 10, 11, ...).
+tlc::Frame frame(int mask_people, int cluster_people, int points_each = 5, double stamp = 1.0) {
+  tlc::Frame f;
+  f.stamp_s = stamp;
+  f.camera_frame = "thermal_optical";
+  f.lidar_frame = "velodyne";
+  f.image = cv::Mat(kHeight, kWidth, CV_16UC1, cv::Scalar(3000));
+  f.mask = cv::Mat::zeros(kHeight, kWidth, CV_8UC1);
+  for (int i = 0; i < mask_people; ++i) {
+    f.mask(cv::Rect(2 + 12 * i, 5, 8, 30)).setTo(i + 1);
+  }
+  for (int i = 0; i < cluster_people; ++i) {
+    for (int k = 0; k < points_each; ++k) {
+      f.points.emplace_back(5.0f, 0.5f * static_cast<float>(i), 0.1f * static_cast<float>(k));
+      f.labels.push_back(10 + i);
+    }
+  }
+  return f;
+}
+
+}  // namespace
+
+TEST(DatasetBuilder, InvalidCameraOrGateThrows) {
+  EXPECT_THROW(tlc::DatasetBuilder(tlc::CameraModel{}, gate()), std::invalid_argument);
+  tlc::GateConfig bad = gate();
+  bad.max_people = 0;
+  EXPECT_THROW(tlc::DatasetBuilder(camera(), bad), std::invalid_argument);
+}
+
+TEST(DatasetBuilder, KeptFrameBuildsThePair) {
+  tlc::DatasetBuilder builder(camera(), gate());
+  tlc::Frame f = frame(2, 2, 6, 12.5);
+  f.mask(cv::Rect(2, 5, 8, 30)).setTo(200);  // ids 200 and 2
+  f.nonfinite_points_dropped = 4;
+  const tlc::OfferOutcome out = builder.offer([&] { return f; });
+  EXPECT_EQ(out.decision, GateDecision::kKept);
+  EXPECT_TRUE(out.error.empty());
+  EXPECT_EQ(out.mask_people, 2);
+  EXPECT_EQ(out.cluster_people, 2);
+
+  ASSERT_EQ(builder.pairs().size(), 1u);
+  const tlc::CalibrationPair& p = builder.pairs()[0];
+  EXPECT_DOUBLE_EQ(p.stamp_s, 12.5);
+  EXPECT_EQ(p.people, 2);
+  ASSERT_EQ(p.mask.type(), CV_8UC1);
+  EXPECT_EQ(p.mask.size(), cv::Size(kWidth, kHeight));
+  double min_value = 0, max_value = 0;
+  cv::minMaxLoc(p.mask, &min_value, &max_value);
+  EXPECT_EQ(min_value, 0.0);
+  EXPECT_EQ(max_value, 1.0);
+  EXPECT_EQ(cv::countNonZero(p.mask), 2 * 8 * 30);
+  EXPECT_EQ(p.image.type(), CV_16UC1);
+  EXPECT_EQ(p.image.size(), cv::Size(kWidth, kHeight));
+  ASSERT_EQ(p.points.size(), 12u);
+  EXPECT_EQ(p.labels, f.labels);
+  EXPECT_EQ(p.points[7], f.points[7]);
+  EXPECT_EQ(builder.cameraFrame(), "thermal_optical");
+  EXPECT_EQ(builder.lidarFrame(), "velodyne");
+  EXPECT_EQ(builder.counts()[GateDecision::kKept], 1u);
+  EXPECT_EQ(builder.counts().nonfinite_points_dropped, 4u);
+}
+
+TEST(DatasetBuilder, ImageWrappingExternalBufferIsCopied) {
+  tlc::DatasetBuilder builder(camera(), gate());
+  std::vector<std::uint16_t> buffer(kWidth * kHeight, 1234);
+  {
+    tlc::Frame f = frame(1, 1);
+    f.image = cv::Mat(kHeight, kWidth, CV_16UC1, buffer.data());
+    EXPECT_EQ(builder.offer([&] { return f; }).decision, GateDecision::kKept);
+  }
+  std::fill(buffer.begin(), buffer.end(), 0);
+  EXPECT_EQ(builder.pairs().at(0).image.at<std::uint16_t>(3, 4), 1234);
+}
+
+TEST(DatasetBuilder, SkipHappensBeforeDecode) {
+  tlc::DatasetBuilder builder(camera(), gate(3));
+  int decode_calls = 0;
+  auto decode = [&] {
+    ++decode_calls;
+    return frame(1, 1);
+  };
+  EXPECT_EQ(builder.offer(decode).decision, GateDecision::kKept);
+  EXPECT_EQ(decode_calls, 1);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(builder.offer(decode).decision, GateDecision::kSkipped) << "candidate " << i;
+  }
+  EXPECT_EQ(decode_calls, 1) << "decode must not run for skipped frames";
+  EXPECT_EQ(builder.offer(decode).decision, GateDecision::kKept);
+  EXPECT_EQ(decode_calls, 2);
+  EXPECT_EQ(builder.pairs().size(), 2u);
+  EXPECT_EQ(builder.counts()[GateDecision::kSkipped], 3u);
+
+  // A skipped frame is skipped even if it could not have been decoded.
+  int throwing_calls = 0;
+  auto throwing = [&]() -> tlc::Frame {
+    ++throwing_calls;
+    throw std::invalid_argument("unsupported encoding rgb8");
+  };
+  EXPECT_EQ(builder.offer(throwing).decision, GateDecision::kSkipped);
+  EXPECT_EQ(throwing_calls, 0);
+}
+
+TEST(DatasetBuilder, BadDecodeIsCountedAndDoesNotStopTheBuilder) {
+  tlc::DatasetBuilder builder(camera(), gate());
+  const tlc::OfferOutcome bad = builder.offer([]() -> tlc::Frame {
+    throw std::invalid_argument("clusters have no 'label' field");
+  });
+  EXPECT_EQ(bad.decision, GateDecision::kBadMessage);
+  EXPECT_EQ(bad.error, "clusters have no 'label' field");
+
+  const tlc::OfferOutcome other = builder.offer([]() -> tlc::Frame {
+    throw std::runtime_error("cv_bridge failed");
+  });
+  EXPECT_EQ(other.decision, GateDecision::kBadMessage);
+  EXPECT_NE(other.error.find("cv_bridge failed"), std::string::npos) << other.error;
+
+  // A bad frame does not arm the skip: the next good one is kept.
+  EXPECT_EQ(builder.offer([] { return frame(1, 1); }).decision, GateDecision::kKept);
+  EXPECT_EQ(builder.counts()[GateDecision::kBadMessage], 2u);
+  EXPECT_EQ(builder.counts()[GateDecision::kKept], 1u);
+  EXPECT_EQ(builder.pairs().size(), 1u);
+}
+
+TEST(DatasetBuilder, MaskSizeMismatchIsBadMessage) {
+  tlc::DatasetBuilder builder(camera(640, 512), gate());
+  const tlc::OfferOutcome out = builder.offer([] {
+    tlc::Frame f = frame(1, 1);
+    f.mask = cv::Mat::zeros(480, 640, CV_8UC1);
+    f.mask(cv::Rect(10, 10, 20, 40)).setTo(1);
+    f.image = cv::Mat();
+    return f;
+  });
+  EXPECT_EQ(out.decision, GateDecision::kBadMessage);
+  EXPECT_EQ(out.error.rfind("mask is 640x480 but camera_info says 640x512: ", 0), 0u) << out.error;
+  EXPECT_TRUE(builder.pairs().empty());
+  EXPECT_EQ(builder.counts()[GateDecision::kBadMessage], 1u);
+}
+
+TEST(DatasetBuilder, OtherMalformedFramesAreBadMessages) {
+  tlc::DatasetBuilder builder(camera(), gate(0));
+  auto expect_bad = [&](tlc::Frame f, const std::string& fragment) {
+    const tlc::OfferOutcome out = builder.offer([&] { return f; });
+    EXPECT_EQ(out.decision, GateDecision::kBadMessage) << fragment;
+    EXPECT_NE(out.error.find(fragment), std::string::npos) << out.error;
+  };
+  tlc::Frame image_size = frame(1, 1);
+  image_size.image = cv::Mat::zeros(kHeight + 1, kWidth, CV_8UC1);
+  expect_bad(image_size, "image is 64x49 but mask is 64x48");
+
+  tlc::Frame labels = frame(1, 1);
+  labels.labels.pop_back();
+  expect_bad(labels, "5 points but 4 labels");
+
+  tlc::Frame mask_type = frame(1, 1);
+  mask_type.mask = cv::Mat::zeros(kHeight, kWidth, CV_32FC1);
+  expect_bad(mask_type, "mask");
+
+  // A frame without an image is fine.
+  tlc::Frame no_image = frame(1, 1);
+  no_image.image = cv::Mat();
+  EXPECT_EQ(builder.offer([&] { return no_image; }).decision, GateDecision::kKept);
+  EXPECT_TRUE(builder.pairs().back().image.empty());
+
+  // Once pairs exist, frames from other sensors are refused.
+  tlc::Frame other_frames = frame(1, 1);
+  other_frames.lidar_frame = "os_sensor";
+  expect_bad(other_frames, "os_sensor");
+  EXPECT_EQ(builder.counts()[GateDecision::kBadMessage], 4u);
+  EXPECT_EQ(builder.pairs().size(), 1u);
+}
+
+TEST(DatasetBuilder, GateDecisionsFromCounts) {
+  tlc::DatasetBuilder builder(camera(), gate(0, 3));
+  const tlc::OfferOutcome mismatch = builder.offer([] { return frame(2, 1); });
+  EXPECT_EQ(mismatch.decision, GateDecision::kCountMismatch);
+  EXPECT_EQ(mismatch.mask_people, 2);
+  EXPECT_EQ(mismatch.cluster_people, 1);
+  EXPECT_EQ(builder.offer([] { return frame(0, 0); }).decision, GateDecision::kNoPeople);
+  EXPECT_EQ(builder.offer([] { return frame(4, 4); }).decision, GateDecision::kTooManyPeople);
+  EXPECT_TRUE(builder.pairs().empty());
+  EXPECT_EQ(builder.counts().considered(), 3u);
+}
+
+TEST(DatasetBuilder, SmallClusterRejectsTheFrame) {
+  tlc::DatasetBuilder builder(camera(), gate(0, 3));
+  tlc::Frame f = frame(2, 2, 5);
+  // Second person's cluster has only two points.
+  f.points.resize(7);
+  f.labels.resize(7);
+  EXPECT_EQ(builder.offer([&] { return f; }).decision, GateDecision::kSmallCluster);
+  EXPECT_EQ(builder.offer([] { return frame(2, 2, 3); }).decision, GateDecision::kKept);
+  EXPECT_EQ(builder.counts()[GateDecision::kSmallCluster], 1u);
+  EXPECT_EQ(builder.pairs().size(), 1u);
+}
+
+TEST(DatasetBuilder, AddExistingPairAndReset) {
+  tlc::DatasetBuilder builder(camera(), gate());
+  tlc::CalibrationPair pair;
+  pair.mask = cv::Mat::zeros(kHeight, kWidth, CV_8UC1);
+  pair.mask(cv::Rect(1, 1, 3, 3)).setTo(255);
+  pair.points = {Eigen::Vector3f(1.0f, 2.0f, 3.0f)};
+  pair.labels = {1};
+  pair.people = 1;
+  builder.addExistingPair(pair);
+  ASSERT_EQ(builder.pairs().size(), 1u);
+  EXPECT_EQ(builder.pairs()[0].mask.at<std::uint8_t>(2, 2), 1);  // stored as 0/1
+  EXPECT_EQ(builder.counts().considered(), 0u);                  // no gating
+
+  tlc::CalibrationPair wrong;
+  wrong.mask = cv::Mat::zeros(kHeight + 2, kWidth, CV_8UC1);
+  EXPECT_THROW(builder.addExistingPair(wrong), std::invalid_argument);
+
+  EXPECT_EQ(builder.offer([] { return frame(1, 1); }).decision, GateDecision::kKept);
+  builder.reset();
+  EXPECT_TRUE(builder.pairs().empty());
+  EXPECT_EQ(builder.counts().considered(), 0u);
+  EXPECT_TRUE(builder.cameraFrame().empty());
+  // No pending skip after reset.
+  EXPECT_EQ(builder.offer([] { return frame(1, 1); }).decision, GateDecision::kKept);
+}
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
