@@ -119,9 +119,10 @@ OfferOutcome DatasetBuilder::offer(const std::function<Frame()>& decode) {
 
 void DatasetBuilder::addExistingPair(CalibrationPair pair) {
   if (pair.mask.cols != camera_.width || pair.mask.rows != camera_.height) {
-    throw std::invalid_argument("stored pair mask is " + sizeString(pair.mask.cols, pair.mask.rows) +
-                                " but camera_info says " + sizeString(camera_.width, camera_.height) +
-                                ": the dataset was recorded with a different camera");
+    throw std::invalid_argument(
+        "stored pair mask is " + sizeString(pair.mask.cols, pair.mask.rows) +
+        " but camera_info says " + sizeString(camera_.width, camera_.height) +
+        ": the dataset was recorded with a different camera");
   }
   pair.mask = binarizeMask(pair.mask);  // accept 0/1, 0/255 or id masks; store 0/1
   pairs_.push_back(std::move(pair));
