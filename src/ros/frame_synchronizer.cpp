@@ -1,0 +1,70 @@
+// FrameSynchronizer: message_filters ApproximateTime over (image, mask, clusters).
+
+#include "thermal_lidar_calibration/ros/frame_synchronizer.hpp"
+
+#include <message_filters/sync_policies/approximate_time.h>
+#include <message_filters/synchronizer.h>
+#include <boost/function.hpp>
+#include <ros/init.h>
+#include <ros/time.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace thermal_lidar_calibration {
+namespace ros_io {
+
+using Policy = message_filters::sync_policies::ApproximateTime<
+    sensor_msgs::Image, sensor_msgs::Image, sensor_msgs::PointCloud2>;
+
+struct FrameSynchronizer::Impl {
+  explicit Impl(int queue_size) : sync(Policy(static_cast<std::uint32_t>(queue_size))) {}
+  message_filters::Synchronizer<Policy> sync;
+};
+
+FrameSynchronizer::FrameSynchronizer(int queue_size, double sync_slop_s, Callback callback)
+    : callback_(std::move(callback)) {
+  if (queue_size < 2) {
+    throw std::invalid_argument("sync_queue_size = " + std::to_string(queue_size) +
+                                ": must be at least 2");
+  }
+  if (!(sync_slop_s > 0.0) || !std::isfinite(sync_slop_s)) {
+    throw std::invalid_argument("sync_slop = " + std::to_string(sync_slop_s) +
+                                ": must be a positive number of seconds");
+  }
+  // message_filters stamps receipt times with ros::Time::now(), which aborts before
+  // ros::Time::init(). A node has initialised it (possibly as sim time): leave that alone.
+  if (!ros::isInitialized() && !ros::Time::isValid()) ros::Time::init();
+  impl_ = std::make_unique<Impl>(queue_size);
+  impl_->sync.setMaxIntervalDuration(ros::Duration(sync_slop_s));
+  // Signal9 wants all nine slots; the six unused ones carry message_filters::NullType.
+  using NullPtr = const boost::shared_ptr<const message_filters::NullType>&;
+  const boost::function<void(const sensor_msgs::Image::ConstPtr&,
+                             const sensor_msgs::Image::ConstPtr&,
+                             const sensor_msgs::PointCloud2::ConstPtr&, NullPtr, NullPtr, NullPtr,
+                             NullPtr, NullPtr, NullPtr)>
+      forward = [this](const sensor_msgs::Image::ConstPtr& image,
+                       const sensor_msgs::Image::ConstPtr& mask,
+                       const sensor_msgs::PointCloud2::ConstPtr& clusters, NullPtr, NullPtr,
+                       NullPtr, NullPtr, NullPtr, NullPtr) {
+        ++triples_;
+        if (callback_) callback_(image, mask, clusters);
+      };
+  impl_->sync.registerCallback(forward);
+}
+
+FrameSynchronizer::~FrameSynchronizer() = default;
+
+void FrameSynchronizer::addImage(const sensor_msgs::Image::ConstPtr& image) {
+  if (image) impl_->sync.add<0>(image);
+}
+void FrameSynchronizer::addMask(const sensor_msgs::Image::ConstPtr& mask) {
+  if (mask) impl_->sync.add<1>(mask);
+}
+void FrameSynchronizer::addClusters(const sensor_msgs::PointCloud2::ConstPtr& clusters) {
+  if (clusters) impl_->sync.add<2>(clusters);
+}
+
+}  // namespace ros_io
+}  // namespace thermal_lidar_calibration

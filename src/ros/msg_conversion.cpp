@@ -1,0 +1,300 @@
+// Decoders: ROS messages -> core types. Every failure throws std::invalid_argument with one line
+// naming the topic, what was wrong and what to do. (The encoders live in msg_encoding.cpp.)
+
+#include "thermal_lidar_calibration/ros/msg_conversion.hpp"
+
+#include <sensor_msgs/image_encodings.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace thermal_lidar_calibration {
+namespace ros_io {
+namespace {
+
+std::string topicPrefix(const std::string& topic) {
+  return topic.empty() ? std::string() : topic + ": ";
+}
+
+[[noreturn]] void fail(const std::string& topic, const std::string& what) {
+  throw std::invalid_argument(topicPrefix(topic) + what);
+}
+
+const char* datatypeName(std::uint8_t datatype) {
+  switch (datatype) {
+    case sensor_msgs::PointField::INT8: return "int8";
+    case sensor_msgs::PointField::UINT8: return "uint8";
+    case sensor_msgs::PointField::INT16: return "int16";
+    case sensor_msgs::PointField::UINT16: return "uint16";
+    case sensor_msgs::PointField::INT32: return "int32";
+    case sensor_msgs::PointField::UINT32: return "uint32";
+    case sensor_msgs::PointField::FLOAT32: return "float32";
+    case sensor_msgs::PointField::FLOAT64: return "float64";
+    default: return "unknown";
+  }
+}
+
+std::size_t datatypeSize(std::uint8_t datatype) {
+  switch (datatype) {
+    case sensor_msgs::PointField::INT8:
+    case sensor_msgs::PointField::UINT8: return 1;
+    case sensor_msgs::PointField::INT16:
+    case sensor_msgs::PointField::UINT16: return 2;
+    case sensor_msgs::PointField::INT32:
+    case sensor_msgs::PointField::UINT32:
+    case sensor_msgs::PointField::FLOAT32: return 4;
+    case sensor_msgs::PointField::FLOAT64: return 8;
+    default: return 0;
+  }
+}
+
+// Reads one scalar of `datatype` at `p` (little-endian host assumed, as checked by the caller).
+double readScalar(const std::uint8_t* p, std::uint8_t datatype) {
+  switch (datatype) {
+    case sensor_msgs::PointField::INT8: { std::int8_t v; std::memcpy(&v, p, 1); return v; }
+    case sensor_msgs::PointField::UINT8: return *p;
+    case sensor_msgs::PointField::INT16: { std::int16_t v; std::memcpy(&v, p, 2); return v; }
+    case sensor_msgs::PointField::UINT16: { std::uint16_t v; std::memcpy(&v, p, 2); return v; }
+    case sensor_msgs::PointField::INT32: { std::int32_t v; std::memcpy(&v, p, 4); return v; }
+    case sensor_msgs::PointField::UINT32: { std::uint32_t v; std::memcpy(&v, p, 4); return v; }
+    case sensor_msgs::PointField::FLOAT32: { float v; std::memcpy(&v, p, 4); return v; }
+    case sensor_msgs::PointField::FLOAT64: { double v; std::memcpy(&v, p, 8); return v; }
+    default: return std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
+std::string fieldList(const sensor_msgs::PointCloud2& msg) {
+  if (msg.fields.empty()) return "none";
+  std::string out;
+  for (const auto& f : msg.fields) out += (out.empty() ? "" : ", ") + f.name;
+  return out;
+}
+
+const sensor_msgs::PointField* findField(const sensor_msgs::PointCloud2& msg,
+                                         const std::string& name) {
+  for (const auto& f : msg.fields) {
+    if (f.name == name) return &f;
+  }
+  return nullptr;
+}
+
+void checkFieldFits(const sensor_msgs::PointCloud2& msg, const sensor_msgs::PointField& f,
+                    const std::string& topic) {
+  const std::size_t size = datatypeSize(f.datatype);
+  if (size == 0) {
+    fail(topic, "PointCloud2 field '" + f.name + "' has unknown datatype " +
+                    std::to_string(f.datatype) + "; use a sensor_msgs/PointField datatype");
+  }
+  if (static_cast<std::size_t>(f.offset) + size > msg.point_step) {
+    fail(topic, "PointCloud2 field '" + f.name + "' (offset " + std::to_string(f.offset) +
+                    ", " + datatypeName(f.datatype) + ") lies outside point_step " +
+                    std::to_string(msg.point_step) + "; fix the publisher's field layout");
+  }
+}
+
+}  // namespace
+
+cv::Mat decodeMonoImage(const sensor_msgs::Image& msg, const std::string& topic) {
+  namespace enc = sensor_msgs::image_encodings;
+  int cv_type = -1;
+  std::size_t bytes_per_pixel = 0;
+  if (msg.encoding == enc::MONO8 || msg.encoding == enc::TYPE_8UC1) {
+    cv_type = CV_8UC1;
+    bytes_per_pixel = 1;
+  } else if (msg.encoding == enc::MONO16 || msg.encoding == enc::TYPE_16UC1) {
+    cv_type = CV_16UC1;
+    bytes_per_pixel = 2;
+  } else {
+    fail(topic, "image encoding '" + msg.encoding +
+                    "' is not supported; publish mono8, 8UC1, mono16 or 16UC1 (one channel)");
+  }
+  if (msg.width == 0 || msg.height == 0) {
+    fail(topic, "image is empty (" + std::to_string(msg.width) + "x" +
+                    std::to_string(msg.height) + "); publish a non-empty image");
+  }
+  if (bytes_per_pixel == 2 && msg.is_bigendian) {
+    fail(topic, "16-bit image is big-endian; publish little-endian data (is_bigendian = 0)");
+  }
+  const std::size_t row_bytes = static_cast<std::size_t>(msg.width) * bytes_per_pixel;
+  if (msg.step < row_bytes) {
+    fail(topic, "image step " + std::to_string(msg.step) + " is smaller than width * " +
+                    std::to_string(bytes_per_pixel) + " = " + std::to_string(row_bytes) +
+                    "; fix the publisher's step");
+  }
+  const std::size_t needed =
+      static_cast<std::size_t>(msg.step) * (msg.height - 1) + row_bytes;
+  if (msg.data.size() < needed) {
+    fail(topic, "image data has " + std::to_string(msg.data.size()) + " bytes, expected " +
+                    std::to_string(static_cast<std::size_t>(msg.step) * msg.height) +
+                    " (step * height); the message is truncated");
+  }
+  cv::Mat out(static_cast<int>(msg.height), static_cast<int>(msg.width), cv_type);
+  for (int r = 0; r < out.rows; ++r) {
+    std::memcpy(out.ptr(r), msg.data.data() + static_cast<std::size_t>(r) * msg.step, row_bytes);
+  }
+  return out;
+}
+
+DecodedClusters decodeClusters(const sensor_msgs::PointCloud2& msg, const std::string& topic) {
+  if (msg.is_bigendian) {
+    fail(topic, "PointCloud2 is big-endian; publish little-endian data (is_bigendian = false)");
+  }
+  const char* axis_names[3] = {"x", "y", "z"};
+  const sensor_msgs::PointField* axes[3];
+  for (int k = 0; k < 3; ++k) {
+    axes[k] = findField(msg, axis_names[k]);
+    if (!axes[k]) {
+      fail(topic, std::string("PointCloud2 has no '") + axis_names[k] + "' field (fields: " +
+                      fieldList(msg) + "); publish float32 x, y, z");
+    }
+    if (axes[k]->datatype != sensor_msgs::PointField::FLOAT32 &&
+        axes[k]->datatype != sensor_msgs::PointField::FLOAT64) {
+      fail(topic, std::string("PointCloud2 field '") + axis_names[k] + "' is " +
+                      datatypeName(axes[k]->datatype) + "; publish float32 x, y, z");
+    }
+    checkFieldFits(msg, *axes[k], topic);
+  }
+  const sensor_msgs::PointField* label = findField(msg, "label");
+  if (!label) {
+    fail(topic, "PointCloud2 has no 'label' field (fields: " + fieldList(msg) +
+                    "); publish one integer label per person");
+  }
+  if (label->datatype == sensor_msgs::PointField::FLOAT64 || datatypeSize(label->datatype) == 0) {
+    fail(topic, std::string("PointCloud2 field 'label' is ") + datatypeName(label->datatype) +
+                    "; publish it as an integer (int8..int32, uint8..uint32) or float32");
+  }
+  checkFieldFits(msg, *label, topic);
+
+  const std::size_t points = static_cast<std::size_t>(msg.width) * msg.height;
+  DecodedClusters out;
+  if (points == 0) return out;
+  if (static_cast<std::size_t>(msg.width) * msg.point_step > msg.row_step) {
+    fail(topic, "PointCloud2 row_step " + std::to_string(msg.row_step) +
+                    " is smaller than width * point_step; fix the publisher's layout");
+  }
+  const std::size_t needed = static_cast<std::size_t>(msg.row_step) * msg.height;
+  if (msg.data.size() < needed) {
+    fail(topic, "PointCloud2 data has " + std::to_string(msg.data.size()) +
+                    " bytes, expected row_step * height = " + std::to_string(needed) +
+                    "; the message is truncated");
+  }
+  out.points.reserve(points);
+  out.labels.reserve(points);
+  for (std::uint32_t row = 0; row < msg.height; ++row) {
+    const std::uint8_t* row_ptr = msg.data.data() + static_cast<std::size_t>(row) * msg.row_step;
+    for (std::uint32_t col = 0; col < msg.width; ++col) {
+      const std::uint8_t* p = row_ptr + static_cast<std::size_t>(col) * msg.point_step;
+      const double x = readScalar(p + axes[0]->offset, axes[0]->datatype);
+      const double y = readScalar(p + axes[1]->offset, axes[1]->datatype);
+      const double z = readScalar(p + axes[2]->offset, axes[2]->datatype);
+      const double l = readScalar(p + label->offset, label->datatype);
+      if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) || !std::isfinite(l)) {
+        ++out.nonfinite_dropped;
+        continue;
+      }
+      const float xf = static_cast<float>(x), yf = static_cast<float>(y),
+                  zf = static_cast<float>(z);
+      if (!std::isfinite(xf) || !std::isfinite(yf) || !std::isfinite(zf)) {
+        ++out.nonfinite_dropped;  // float64 beyond the float32 range
+        continue;
+      }
+      if (l != std::round(l) || l < std::numeric_limits<std::int32_t>::min() ||
+          l > std::numeric_limits<std::int32_t>::max()) {
+        std::ostringstream value;
+        value << l;
+        fail(topic, "PointCloud2 label " + value.str() +
+                        " is not an int32 integer; publish one integer label per person");
+      }
+      out.points.emplace_back(xf, yf, zf);
+      out.labels.push_back(static_cast<std::int32_t>(l));
+    }
+  }
+  return out;
+}
+
+CameraModel cameraModelFromMsg(const sensor_msgs::CameraInfo& msg) {
+  const std::string what = "CameraInfo";
+  if (msg.width == 0 || msg.height == 0) {
+    throw std::invalid_argument(what + ": image size is " + std::to_string(msg.width) + "x" +
+                                std::to_string(msg.height) +
+                                "; publish the calibrated width and height");
+  }
+  bool k_zero = true;
+  std::array<double, 9> K{};
+  for (int i = 0; i < 9; ++i) {
+    K[i] = msg.K[i];
+    if (K[i] != 0.0) k_zero = false;
+    if (!std::isfinite(K[i])) {
+      throw std::invalid_argument(what + ": K has a non-finite entry; publish a calibrated K");
+    }
+  }
+  if (k_zero) {
+    throw std::invalid_argument(what + ": K is all zeros (camera not calibrated); calibrate the "
+                                       "intrinsics or give a camera_calibration YAML file");
+  }
+  std::vector<double> D(msg.D.begin(), msg.D.end());
+  const std::string& model = msg.distortion_model;
+  const bool all_zero = std::all_of(D.begin(), D.end(), [](double d) { return d == 0.0; });
+  if (model == "plumb_bob") {
+    if (D.empty()) {
+      // plumb_bob with no coefficients: no distortion.
+    } else if (D.size() != 5) {
+      throw std::invalid_argument(what + ": plumb_bob needs 5 distortion coefficients, got " +
+                                  std::to_string(D.size()) + "; publish k1 k2 p1 p2 k3");
+    }
+  } else if (model.empty() || model == "none") {
+    if (!all_zero) {
+      throw std::invalid_argument(what + ": distortion_model is '" + model +
+                                  "' but D is non-zero; set distortion_model to plumb_bob");
+    }
+    D.clear();
+  } else {
+    if (!all_zero) {
+      throw std::invalid_argument(what + ": distortion_model '" + model +
+                                  "' is not supported; use plumb_bob (5 coefficients) or none, "
+                                  "or rectify the images first");
+    }
+    D.clear();  // any model with all-zero coefficients is a plain pinhole
+  }
+  if (all_zero) D.clear();
+  CameraModel camera;
+  try {
+    camera = CameraModel::fromK(static_cast<int>(msg.width), static_cast<int>(msg.height), K, D);
+    camera.validate();
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(what + ": " + e.what());
+  }
+  return camera;
+}
+
+Frame decodeFrame(const sensor_msgs::Image& image, const sensor_msgs::Image& mask,
+                  const sensor_msgs::PointCloud2& clusters, const std::string& image_topic,
+                  const std::string& mask_topic, const std::string& clusters_topic) {
+  Frame frame;
+  frame.stamp_s = image.header.stamp.toSec();
+  frame.camera_frame = image.header.frame_id.empty() ? mask.header.frame_id : image.header.frame_id;
+  frame.lidar_frame = clusters.header.frame_id;
+  frame.image = decodeMonoImage(image, image_topic);
+  frame.mask = decodeMonoImage(mask, mask_topic);
+  if (frame.image.size() != frame.mask.size()) {
+    fail(mask_topic, "mask is " + std::to_string(frame.mask.cols) + "x" +
+                         std::to_string(frame.mask.rows) + " but the image on " + image_topic +
+                         " is " + std::to_string(frame.image.cols) + "x" +
+                         std::to_string(frame.image.rows) +
+                         "; segment the same image the camera publishes");
+  }
+  DecodedClusters decoded = decodeClusters(clusters, clusters_topic);
+  frame.points = std::move(decoded.points);
+  frame.labels = std::move(decoded.labels);
+  frame.nonfinite_points_dropped = decoded.nonfinite_dropped;
+  return frame;
+}
+
+}  // namespace ros_io
+}  // namespace thermal_lidar_calibration

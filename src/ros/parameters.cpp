@@ -1,0 +1,291 @@
+// The parameter table shared by calibration_node (~ parameters) and calibrate_bag (--config):
+// defaults from the core structs, per-key type and range checks, then the core validate().
+
+#include "thermal_lidar_calibration/ros/parameters.hpp"
+#include "thermal_lidar_calibration/ros/unknown_parameters.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace thermal_lidar_calibration {
+namespace ros_io {
+namespace {
+
+std::string formatDouble(double v) {
+  std::ostringstream s;
+  s.precision(12);
+  s << v;
+  return s.str();
+}
+
+// The value as the user wrote it, for error messages.
+std::string rawValue(const ParameterSource& source, const std::string& key) {
+  if (auto i = source.getInt(key)) return std::to_string(*i);
+  if (auto d = source.getDouble(key)) return formatDouble(*d);
+  if (auto b = source.getBool(key)) return *b ? "true" : "false";
+  if (auto s = source.getString(key)) return "'" + *s + "'";
+  return "<not a scalar>";
+}
+
+[[noreturn]] void badValue(const ParameterSource& source, const std::string& key,
+                           const std::string& requirement) {
+  throw std::invalid_argument("parameter '" + key + "' = " + rawValue(source, key) + ": " +
+                              requirement);
+}
+
+template <typename Int>
+void readInt(const ParameterSource& source, const std::string& key, long long lo, long long hi,
+             Int& target) {
+  if (!source.has(key)) return;
+  const std::string requirement =
+      "must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  const auto v = source.getInt(key);
+  if (!v || *v < lo || *v > hi) badValue(source, key, requirement);
+  target = static_cast<Int>(*v);
+}
+
+// Range [lo, hi], or (lo, hi] when lo_open.
+void readDouble(const ParameterSource& source, const std::string& key, double lo, bool lo_open,
+                double hi, double& target) {
+  if (!source.has(key)) return;
+  const std::string requirement = "must be a number in " + std::string(lo_open ? "(" : "[") +
+                                  formatDouble(lo) + ", " + formatDouble(hi) + "]";
+  const auto v = source.getDouble(key);
+  if (!v || !std::isfinite(*v) || *v > hi || (lo_open ? *v <= lo : *v < lo)) {
+    badValue(source, key, requirement);
+  }
+  target = *v;
+}
+
+const std::vector<std::string>& coreKeys() {
+  static const std::vector<std::string> keys = {
+      "algorithm", "refine", "seed", "num_threads", "population_size", "max_iterations",
+      "rotation_interval_rad", "translation_interval_m", "elite_fraction", "crossover_fraction",
+      "initial_population_factor", "sigma_rot_rad", "sigma_trans_m", "min_inside_fraction",
+      "behind_camera_penalty_c1", "min_sample_large", "min_sample_small", "min_sample_switch",
+      "outlier_iterations", "ratio_solution", "threshold_sample_px",
+      "refine_initial_step_rot_rad", "refine_initial_step_trans_m", "refine_min_step_rot_rad",
+      "refine_min_step_trans_m", "refine_max_evaluations", "max_people", "skip_frames",
+      "min_points_per_cluster", "sync_slop", "sync_queue_size", "pairs_required"};
+  return keys;
+}
+
+// ------------------------------------------------------------------------------------------
+// YAML-backed source (the --config file, same format as config/default.yaml).
+class YamlParameterSource : public ParameterSource {
+ public:
+  YamlParameterSource(YAML::Node root, std::string path)
+      : root_(std::move(root)), path_(std::move(path)) {}
+
+  bool has(const std::string& key) const override {
+    const YAML::Node n = node(key);
+    return n && !n.IsNull();
+  }
+  std::optional<double> getDouble(const std::string& key) const override {
+    return convert<double>(key);
+  }
+  std::optional<long long> getInt(const std::string& key) const override {
+    return convert<long long>(key);
+  }
+  std::optional<std::string> getString(const std::string& key) const override {
+    const YAML::Node n = node(key);
+    if (!n || !n.IsScalar()) return std::nullopt;
+    return n.Scalar();
+  }
+  std::optional<bool> getBool(const std::string& key) const override {
+    return convert<bool>(key);
+  }
+  std::string describe() const override { return "file " + path_; }
+
+ private:
+  YAML::Node node(const std::string& key) const {
+    const YAML::Node& root = root_;
+    return root[key];
+  }
+  template <typename T>
+  std::optional<T> convert(const std::string& key) const {
+    const YAML::Node n = node(key);
+    if (!n || !n.IsScalar()) return std::nullopt;
+    try {
+      return n.as<T>();
+    } catch (const YAML::Exception&) {
+      return std::nullopt;
+    }
+  }
+
+  YAML::Node root_;
+  std::string path_;
+};
+
+YAML::Node loadYamlMap(const std::string& path) {
+  std::ifstream probe(path);
+  if (!probe) {
+    throw std::invalid_argument("parameter file " + path +
+                                " cannot be opened (missing or unreadable); check the path");
+  }
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::Exception& e) {
+    throw std::invalid_argument("parameter file " + path + " is not valid YAML (" + e.msg +
+                                " at line " + std::to_string(e.mark.line + 1) + ")");
+  }
+  if (root.IsNull()) return YAML::Node(YAML::NodeType::Map);  // an empty file: all defaults
+  if (!root.IsMap()) {
+    throw std::invalid_argument("parameter file " + path +
+                                " is not a YAML map; write one 'key: value' per line");
+  }
+  return root;
+}
+
+}  // namespace
+
+std::unique_ptr<ParameterSource> makeYamlParameterSource(const std::string& path) {
+  return std::make_unique<YamlParameterSource>(loadYamlMap(path), path);
+}
+
+std::vector<std::string> yamlFileKeys(const std::string& path) {
+  const YAML::Node root = loadYamlMap(path);
+  std::vector<std::string> keys;
+  for (const auto& kv : root) keys.push_back(kv.first.as<std::string>());
+  return keys;
+}
+
+std::vector<std::string> unknownParameterKeys(const std::vector<std::string>& keys) {
+  const auto& known = knownParameterKeys();
+  std::vector<std::string> unknown;
+  for (const auto& k : keys) {
+    if (std::find(known.begin(), known.end(), k) == known.end()) unknown.push_back(k);
+  }
+  return unknown;
+}
+
+CoreParameters loadCoreParameters(const ParameterSource& source) {
+  CoreParameters p;
+  CalibrationConfig& c = p.calibration;
+  EvolutionConfig& e = c.evolution;
+  OutlierConfig& o = c.outlier;
+  RefineConfig& r = c.refine;
+
+  int algorithm = static_cast<int>(c.algorithm);
+  if (source.has("algorithm")) {
+    const auto v = source.getInt("algorithm");
+    if (!v || (*v != 1 && *v != 2)) {
+      badValue(source, "algorithm", "must be 1 (plain evolution) or 2 (with outlier rejection)");
+    }
+    algorithm = static_cast<int>(*v);
+  }
+  c.algorithm = algorithm == 1 ? Algorithm::kPlain : Algorithm::kOutlierRejection;
+  if (source.has("refine")) {
+    const auto v = source.getString("refine");
+    if (!v || (*v != "none" && *v != "local")) {
+      badValue(source, "refine", "must be 'none' or 'local'");
+    }
+    r.mode = *v == "none" ? RefineMode::kNone : RefineMode::kLocal;
+  }
+  readInt(source, "seed", 0, std::numeric_limits<long long>::max(), c.seed);
+  readInt(source, "num_threads", 0, 1024, c.num_threads);
+
+  readInt(source, "population_size", 2, 100000, e.population_size);
+  readInt(source, "max_iterations", 1, 1000000, e.max_iterations);
+  readDouble(source, "rotation_interval_rad", 0.0, true, 7.0, e.rotation_interval_rad);
+  readDouble(source, "translation_interval_m", 0.0, true, 1000.0, e.translation_interval_m);
+  readDouble(source, "elite_fraction", 0.0, false, 1.0, e.elite_fraction);
+  readDouble(source, "crossover_fraction", 0.0, false, 1.0, e.crossover_fraction);
+  readInt(source, "initial_population_factor", 1, 1000, e.initial_population_factor);
+  readDouble(source, "sigma_rot_rad", 0.0, false, 3.5, e.sigma_rot_rad);
+  readDouble(source, "sigma_trans_m", 0.0, false, 100.0, e.sigma_trans_m);
+  readDouble(source, "min_inside_fraction", 0.0, false, 1.0, e.min_inside_fraction);
+  readDouble(source, "behind_camera_penalty_c1", 0.0, false, 1e6, c.behind_camera_penalty_c1);
+
+  readInt(source, "min_sample_large", 1, 100000, o.min_sample_large);
+  readInt(source, "min_sample_small", 1, 100000, o.min_sample_small);
+  readInt(source, "min_sample_switch", 1, 100000, o.min_sample_switch);
+  readInt(source, "outlier_iterations", 1, 1000, o.iterations);
+  readDouble(source, "ratio_solution", 0.0, false, 1.0, o.ratio_solution);
+  readDouble(source, "threshold_sample_px", 0.0, true, 1e6, o.threshold_px);
+
+  readDouble(source, "refine_initial_step_rot_rad", 0.0, true, 1.0, r.initial_step_rot_rad);
+  readDouble(source, "refine_initial_step_trans_m", 0.0, true, 10.0, r.initial_step_trans_m);
+  readDouble(source, "refine_min_step_rot_rad", 0.0, true, 1.0, r.min_step_rot_rad);
+  readDouble(source, "refine_min_step_trans_m", 0.0, true, 10.0, r.min_step_trans_m);
+  readInt(source, "refine_max_evaluations", 1, 100000000, r.max_evaluations);
+
+  readInt(source, "max_people", 1, 1000, p.gate.max_people);
+  readInt(source, "skip_frames", 0, 100000, p.gate.skip_frames);
+  readInt(source, "min_points_per_cluster", 1, 1000000, p.gate.min_points_per_cluster);
+  readDouble(source, "sync_slop", 0.0, true, 10.0, p.sync_slop_s);
+  readInt(source, "sync_queue_size", 2, 10000, p.sync_queue_size);
+  readInt(source, "pairs_required", 1, 100000, p.pairs_required);
+
+  // Cross-key rules (elite + crossover <= 1, min steps below initial steps, ...) are the core's.
+  p.calibration.validate();
+  p.gate.validate();
+  return p;
+}
+
+std::vector<std::pair<std::string, std::string>> describeCoreParameters(const CoreParameters& p) {
+  const CalibrationConfig& c = p.calibration;
+  const EvolutionConfig& e = c.evolution;
+  const OutlierConfig& o = c.outlier;
+  const RefineConfig& r = c.refine;
+  const auto d = formatDouble;
+  const auto i = [](long long v) { return std::to_string(v); };
+  return {
+      {"algorithm", c.algorithm == Algorithm::kPlain ? "1" : "2"},
+      {"refine", r.mode == RefineMode::kNone ? "none" : "local"},
+      {"seed", std::to_string(c.seed)},
+      {"num_threads", i(c.num_threads)},
+      {"population_size", i(e.population_size)},
+      {"max_iterations", i(e.max_iterations)},
+      {"rotation_interval_rad", d(e.rotation_interval_rad)},
+      {"translation_interval_m", d(e.translation_interval_m)},
+      {"elite_fraction", d(e.elite_fraction)},
+      {"crossover_fraction", d(e.crossover_fraction)},
+      {"initial_population_factor", i(e.initial_population_factor)},
+      {"sigma_rot_rad", d(e.sigma_rot_rad)},
+      {"sigma_trans_m", d(e.sigma_trans_m)},
+      {"min_inside_fraction", d(e.min_inside_fraction)},
+      {"behind_camera_penalty_c1", d(c.behind_camera_penalty_c1)},
+      {"min_sample_large", i(o.min_sample_large)},
+      {"min_sample_small", i(o.min_sample_small)},
+      {"min_sample_switch", i(o.min_sample_switch)},
+      {"outlier_iterations", i(o.iterations)},
+      {"ratio_solution", d(o.ratio_solution)},
+      {"threshold_sample_px", d(o.threshold_px)},
+      {"refine_initial_step_rot_rad", d(r.initial_step_rot_rad)},
+      {"refine_initial_step_trans_m", d(r.initial_step_trans_m)},
+      {"refine_min_step_rot_rad", d(r.min_step_rot_rad)},
+      {"refine_min_step_trans_m", d(r.min_step_trans_m)},
+      {"refine_max_evaluations", i(r.max_evaluations)},
+      {"max_people", i(p.gate.max_people)},
+      {"skip_frames", i(p.gate.skip_frames)},
+      {"min_points_per_cluster", i(p.gate.min_points_per_cluster)},
+      {"sync_slop", d(p.sync_slop_s)},
+      {"sync_queue_size", i(p.sync_queue_size)},
+      {"pairs_required", i(p.pairs_required)},
+  };
+}
+
+const std::vector<std::string>& knownParameterKeys() {
+  static const std::vector<std::string> keys = [] {
+    std::vector<std::string> k = coreKeys();
+    for (const char* node_key :
+         {"output_file", "dataset_bag", "resume", "camera_info_file", "child_frame",
+          "min_pairs_to_calibrate", "progress_log_period_s", "status_rate_hz", "tf_check_wait_s",
+          "overlay_max_points"}) {
+      k.emplace_back(node_key);
+    }
+    return k;
+  }();
+  return keys;
+}
+
+}  // namespace ros_io
+}  // namespace thermal_lidar_calibration
