@@ -1,0 +1,41 @@
+#pragma once
+// The one-screen summary calibrate_bag prints at the end, and the tf command line.
+
+#include "thermal_lidar_calibration/core/calibrator.hpp"
+#include "thermal_lidar_calibration/core/frame_gate.hpp"
+
+#include <optional>
+#include <string>
+
+namespace thermal_lidar_calibration {
+namespace ros_io {
+
+struct TruthComparison {
+  double rotation_error_rad = 0.0;
+  double translation_error_m = 0.0;
+  double truth_loss = 0.0;  // Eq. (3), nearest rule, on the pairs the result used
+};
+
+struct SummaryInput {
+  std::string bag_path;
+  std::string output_path;
+  std::string lidar_frame;
+  std::string camera_frame;
+  std::string algorithm_text;        // "Algorithm 2, refine local, seed 1"
+  std::uint64_t messages_read = 0;
+  std::uint64_t frames = 0;          // synchronized candidates
+  RejectionCounts counts;
+  CalibrationResult result;
+  std::optional<TruthComparison> truth;
+  double total_seconds = 0.0;        // whole tool run
+};
+
+std::string formatCalibrationSummary(const SummaryInput& in);
+
+// "rosrun tf2_ros static_transform_publisher x y z qx qy qz qw lidar_frame camera_frame":
+// the pose of the camera in the LiDAR frame (the inverse of p_C = R p_L + t).
+std::string staticTransformCommand(const Extrinsic& extrinsic, const std::string& lidar_frame,
+                                   const std::string& camera_frame);
+
+}  // namespace ros_io
+}  // namespace thermal_lidar_calibration
