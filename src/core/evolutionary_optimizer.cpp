@@ -72,15 +72,7 @@ std::vector<Individual> EvolutionaryOptimizer::initialPopulation(
     draws += kDrawBatch;
 #pragma omp parallel for schedule(static) num_threads(teamSize(threads_))
     for (int i = 0; i < static_cast<int>(kDrawBatch); ++i) {
-      const Extrinsic e = batch[i].extrinsic();
-      char ok = 0;
-      for (std::size_t p : pairs) {
-        if (loss_.insideFraction(p, e) >= config_.min_inside_fraction) {
-          ok = 1;
-          break;
-        }
-      }
-      accepted[i] = ok;
+      accepted[i] = loss_.somePairInside(pairs, batch[i].extrinsic(), config_.min_inside_fraction);
     }
     for (std::size_t i = 0; i < kDrawBatch && population.size() < target; ++i) {
       if (accepted[i]) population.push_back(batch[i]);

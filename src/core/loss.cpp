@@ -5,6 +5,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <atomic>
 #include <numeric>
@@ -40,6 +41,11 @@ PreparedPair::PreparedPair(const CalibrationPair& pair) : distance(pair.mask) {
     x.push_back(p.x());
     y.push_back(p.y());
     z.push_back(p.z());
+    centre += p.cast<double>();
+  }
+  if (!pair.points.empty()) centre /= static_cast<double>(pair.points.size());
+  for (const Eigen::Vector3f& p : pair.points) {
+    radius = std::max(radius, (p.cast<double>() - centre).norm());
   }
 }
 
@@ -186,6 +192,25 @@ double LossEvaluator::insideFraction(std::size_t pair, const Extrinsic& extrinsi
   const int inside = kernels::countInside(m.data(), impl_->distorted, impl_->lens, pointsOf(p),
                                           camera_.width, camera_.height);
   return static_cast<double>(inside) / static_cast<double>(p.x.size());
+}
+
+bool LossEvaluator::somePairInside(const std::vector<std::size_t>& pairs,
+                                   const Extrinsic& extrinsic, double fraction) const {
+  const Params m = impl_->paramsOf(extrinsic);
+  const Eigen::Matrix3d R = extrinsic.rotationMatrix();
+  for (std::size_t i : pairs) {
+    const PreparedPair& p = impl_->pairs.at(i);
+    // Camera-frame depth of the sphere's centre; if even its nearest point is not in front, no
+    // point of this pair can be (R preserves distances).
+    const double z = R.row(2).dot(p.centre) + extrinsic.translation.z();
+    if (z + p.radius <= 0.0) continue;
+    const int needed = static_cast<int>(std::ceil(fraction * static_cast<double>(p.x.size()) - 1e-9));
+    if (kernels::atLeastInside(m.data(), impl_->distorted, impl_->lens, pointsOf(p),
+                               camera_.width, camera_.height, needed)) {
+      return true;
+    }
+  }
+  return false;
 }
 
 std::uint64_t LossEvaluator::pointsEvaluated() const { return impl_->points.load(); }

@@ -39,5 +39,9 @@ float sumPsiBilinearDistorted(const float* m, const Lens& lens, const Points& p,
 int countInside(const float* m, bool distorted, const Lens& lens, const Points& p, int width,
                 int height);
 
+// countInside(...) >= needed, deciding as soon as the remaining points cannot change it.
+bool atLeastInside(const float* m, bool distorted, const Lens& lens, const Points& p, int width,
+                   int height, int needed);
+
 }  // namespace kernels
 }  // namespace thermal_lidar_calibration

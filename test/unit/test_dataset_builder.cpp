@@ -258,8 +258,3 @@ TEST(DatasetBuilder, AddExistingPairAndReset) {
   // No pending skip after reset.
   EXPECT_EQ(builder.offer([] { return frame(1, 1); }).decision, GateDecision::kKept);
 }
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

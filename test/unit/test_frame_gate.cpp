@@ -211,8 +211,3 @@ TEST(RejectionCounts, EmptySummary) {
             "kept 0; rejected: unequal 0, none 0, >H_max 0, skipped 0, small cluster 0, bad 0, "
             "non-finite points dropped 0");
 }
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

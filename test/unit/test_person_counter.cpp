@@ -103,8 +103,3 @@ TEST(ClusterSizes, PointsPerLabel) {
   EXPECT_EQ(sizes.at(-1), 1);
   EXPECT_TRUE(tlc::clusterSizes({}).empty());
 }
-
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}

@@ -29,6 +29,8 @@ struct LossConfig {
 struct PreparedPair {
   std::vector<float> x, y, z;
   DistanceMap distance;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // bounding sphere of the points
+  double radius = 0.0;
   explicit PreparedPair(const CalibrationPair& pair);
 };
 
@@ -59,6 +61,12 @@ class LossEvaluator {
                  std::vector<double>& out, int threads) const;
   // Fraction of pair i's points in front of the camera that land inside the image.
   double insideFraction(std::size_t pair, const Extrinsic& extrinsic) const;
+  // Algorithm 1's acceptance test for an initial individual: does some pair in `pairs` put at
+  // least `fraction` of its points inside the image? Same answer as insideFraction() pair by
+  // pair, but skips pairs whose bounding sphere is behind the camera and stops counting as soon
+  // as the answer is known (most random poses look away from the people).
+  bool somePairInside(const std::vector<std::size_t>& pairs, const Extrinsic& extrinsic,
+                      double fraction) const;
 
   // Projected points (pair i, candidate) scored so far by this evaluator (for throughput stats).
   std::uint64_t pointsEvaluated() const;

@@ -1,0 +1,87 @@
+// Speed of the calibration (Google Benchmark; not a test):
+//   BM_LossThroughput  projected points per second on ONE core (items_per_second), for the
+//                      nearest (paper) and bilinear (refinement) rules, with and without lens
+//                      distortion;
+//   BM_DefaultRun      the whole default calibration (Algorithm 2 at Table 1 + refinement) on
+//                      60 pairs of ~100 points, 2 threads.
+// Run: scripts/benchmark.sh (builds Release, then runs this binary).
+#include "thermal_lidar_calibration/core/calibrator.hpp"
+#include "thermal_lidar_calibration/core/loss.hpp"
+
+#include "../test/support/synthetic_pairs.hpp"
+
+#include <benchmark/benchmark.h>
+
+using namespace thermal_lidar_calibration;
+
+namespace {
+
+const std::vector<CalibrationPair>& benchPairs(bool distorted) {
+  static const auto make = [](bool d) {
+    test_support::SyntheticPairsOptions o;
+    o.pairs = 60;
+    o.max_people = 1;
+    o.points_per_person = 100;
+    o.seed = 2024;
+    return test_support::makeSyntheticPairs(test_support::fieldsafeCamera(d),
+                                            test_support::fieldsafeTruth(), o);
+  };
+  static const std::vector<CalibrationPair> with = make(true), without = make(false);
+  return distorted ? with : without;
+}
+
+std::vector<Extrinsic> candidatesNearTruth(int n) {
+  Rng rng(5);
+  std::vector<Extrinsic> out;
+  const Extrinsic truth = test_support::fieldsafeTruth();
+  for (int i = 0; i < n; ++i) {
+    Extrinsic e = truth;
+    for (int k = 0; k < 3; ++k) e.rotation_vector[k] += rng.uniform(-0.05, 0.05);
+    for (int k = 0; k < 3; ++k) e.translation[k] += rng.uniform(-0.1, 0.1);
+    out.push_back(e);
+  }
+  return out;
+}
+
+void BM_LossThroughput(benchmark::State& state) {
+  const bool distorted = state.range(0) != 0;
+  const PixelRule rule = state.range(1) != 0 ? PixelRule::kBilinear : PixelRule::kNearest;
+  const auto& pairs = benchPairs(distorted);
+  const LossEvaluator loss(test_support::fieldsafeCamera(distorted), pairs, LossConfig{5.0, rule});
+  const auto candidates = candidatesNearTruth(500);
+  std::size_t points = 0;
+  for (const auto& p : pairs) points += p.points.size();
+  std::vector<double> out;
+  for (auto _ : state) {
+    loss.lossBatch(candidates, {}, out, 1);
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * candidates.size() * points);
+  state.SetLabel(std::string(distorted ? "plumb_bob" : "pinhole") + ", " +
+                 (rule == PixelRule::kNearest ? "nearest" : "bilinear") + ", " +
+                 std::to_string(points) + " points");
+}
+BENCHMARK(BM_LossThroughput)
+    ->ArgsProduct({{0, 1}, {0, 1}})
+    ->ArgNames({"distorted", "bilinear"})
+    ->Unit(benchmark::kMillisecond);
+
+void BM_DefaultRun(benchmark::State& state) {
+  const auto& pairs = benchPairs(true);
+  CalibrationConfig config;  // Algorithm 2, Table 1, local refinement
+  config.num_threads = static_cast<int>(state.range(0));
+  double rot = 0, trans = 0;
+  for (auto _ : state) {
+    const CalibrationResult r = calibrate(test_support::fieldsafeCamera(true), pairs, config);
+    rot = rotationErrorRad(r.extrinsic, test_support::fieldsafeTruth()) * 180.0 / M_PI;
+    trans = translationErrorM(r.extrinsic, test_support::fieldsafeTruth()) * 100.0;
+    benchmark::DoNotOptimize(r.loss);
+  }
+  state.counters["rot_err_deg"] = rot;
+  state.counters["trans_err_cm"] = trans;
+}
+BENCHMARK(BM_DefaultRun)->Arg(2)->ArgName("threads")->Unit(benchmark::kSecond)->Iterations(1);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,109 @@
+#pragma once
+// Small, fast synthetic pairs for unit tests and benchmarks (no ROS, no ray casting): people are
+// vertical cylinders standing on the ground in the LiDAR frame; the mask is the rasterised
+// projection of a dense sampling of each cylinder (so every surface point lands on the mask),
+// and the LiDAR points are a sparse random subset of the side facing the sensor. The full
+// ray-cast rig with beam patterns and occlusion lives in the synthetic library.
+
+#include "thermal_lidar_calibration/core/calibration_pair.hpp"
+#include "thermal_lidar_calibration/core/camera_model.hpp"
+#include "thermal_lidar_calibration/core/extrinsic.hpp"
+#include "thermal_lidar_calibration/core/random.hpp"
+
+#include <opencv2/imgproc.hpp>
+
+#include <cmath>
+#include <vector>
+
+namespace thermal_lidar_calibration {
+namespace test_support {
+
+inline CameraModel fieldsafeCamera(bool distorted = true) {
+  return CameraModel::fromK(640, 512, {772.41, 0, 322.67, 0, 772.83, 250.66, 0, 0, 1},
+                            distorted ? std::vector<double>{-0.0496, 0.3632, 0, 0, 0}
+                                      : std::vector<double>{});
+}
+
+// FieldSAFE's own LiDAR-to-thermal transform (orthonormalised).
+inline Extrinsic fieldsafeTruth() {
+  Eigen::Matrix3d R;
+  R << 0.0336, -0.9994, 0.0120, -0.2518, -0.0201, -0.9676, 0.9672, 0.0295, -0.2523;
+  return Extrinsic::fromRotationMatrix(R, Eigen::Vector3d(0.443, -0.393, -0.079));
+}
+
+struct SyntheticPairsOptions {
+  int pairs = 30;
+  int max_people = 2;
+  int points_per_person = 80;
+  double min_range_m = 4.0, max_range_m = 20.0;
+  double ground_z_m = -1.9;  // ground height in the LiDAR frame
+  std::uint64_t seed = 7;
+};
+
+inline std::vector<CalibrationPair> makeSyntheticPairs(const CameraModel& camera,
+                                                       const Extrinsic& truth,
+                                                       const SyntheticPairsOptions& o) {
+  Rng rng(o.seed);
+  const Eigen::Matrix3d R = truth.rotationMatrix();
+  const Eigen::Vector3d t = truth.translation;
+  std::vector<CalibrationPair> pairs;
+  while (static_cast<int>(pairs.size()) < o.pairs) {
+    CalibrationPair pair;
+    pair.mask = cv::Mat::zeros(camera.height, camera.width, CV_8UC1);
+    const int people = 1 + static_cast<int>(rng.index(static_cast<std::size_t>(o.max_people)));
+    bool ok = true;
+    for (int k = 0; k < people && ok; ++k) {
+      // Pick a direction through the image's middle band and a range, in the LiDAR frame.
+      const double range = rng.uniform(o.min_range_m, o.max_range_m);
+      const double azimuth = rng.uniform(-0.33, 0.33);
+      const Eigen::Vector2d c(range * std::cos(azimuth), range * std::sin(azimuth));
+      const double radius = rng.uniform(0.18, 0.28), height = rng.uniform(1.55, 1.95);
+      cv::Mat person = cv::Mat::zeros(camera.height, camera.width, CV_8UC1);
+      const double step = 0.004;
+      int inside = 0;
+      for (double z = 0; z <= height; z += step) {
+        for (double a = 0; a < 2 * M_PI; a += step / radius) {
+          const Eigen::Vector3d pl(c.x() + radius * std::cos(a), c.y() + radius * std::sin(a),
+                                   o.ground_z_m + z);
+          const Eigen::Vector3d pc = R * pl + t;
+          if (pc.z() <= 0.1) continue;
+          const Eigen::Vector2d uv = camera.project(pc);
+          const int u = static_cast<int>(std::floor(uv.x() + 0.5));
+          const int v = static_cast<int>(std::floor(uv.y() + 0.5));
+          if (u < 0 || v < 0 || u >= camera.width || v >= camera.height) continue;
+          person.at<std::uint8_t>(v, u) = 1;
+          ++inside;
+        }
+      }
+      if (inside < 200) {
+        ok = false;
+        break;
+      }
+      cv::morphologyEx(person, person, cv::MORPH_CLOSE,
+                       cv::getStructuringElement(cv::MORPH_RECT, cv::Size(3, 3)));
+      pair.mask |= person;
+      // Sparse points on the half of the cylinder facing the LiDAR.
+      const double facing = std::atan2(-c.y(), -c.x());
+      for (int i = 0; i < o.points_per_person; ++i) {
+        const double a = facing + rng.uniform(-1.55, 1.55);  // to the silhouette edges
+        const Eigen::Vector3d pl(c.x() + radius * std::cos(a), c.y() + radius * std::sin(a),
+                                 o.ground_z_m + rng.uniform(0.0, height));
+        const Eigen::Vector3d pc = R * pl + t;
+        const Eigen::Vector2d uv = camera.project(pc);
+        if (uv.x() < 0 || uv.y() < 0 || uv.x() > camera.width - 1 || uv.y() > camera.height - 1) {
+          continue;  // the camera sees only part of this person: keep what it sees
+        }
+        pair.points.push_back(pl.cast<float>());
+        pair.labels.push_back(k + 1);
+      }
+    }
+    if (!ok || pair.points.size() < 10) continue;
+    pair.people = people;
+    pair.stamp_s = 0.1 * static_cast<double>(pairs.size());
+    pairs.push_back(std::move(pair));
+  }
+  return pairs;
+}
+
+}  // namespace test_support
+}  // namespace thermal_lidar_calibration

@@ -1,0 +1,66 @@
+// The distance map must equal a brute-force L1 search everywhere, including off the image.
+#include "thermal_lidar_calibration/core/distance_map.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using thermal_lidar_calibration::DistanceMap;
+
+namespace {
+
+cv::Mat randomMask(int w, int h, int blobs, unsigned seed) {
+  std::mt19937 rng(seed);
+  cv::Mat m = cv::Mat::zeros(h, w, CV_8UC1);
+  for (int b = 0; b < blobs; ++b) {
+    const int x = static_cast<int>(rng() % (w - 6)) + 3, y = static_cast<int>(rng() % (h - 8)) + 4;
+    for (int v = y - 3; v <= y + 3; ++v)
+      for (int u = x - 1; u <= x + 1; ++u) m.at<std::uint8_t>(v, u) = 1;
+  }
+  return m;
+}
+
+float bruteForce(const cv::Mat& m, int u, int v) {
+  float best = 1e30f;
+  for (int y = 0; y < m.rows; ++y)
+    for (int x = 0; x < m.cols; ++x)
+      if (m.at<std::uint8_t>(y, x)) best = std::min(best, float(std::abs(u - x) + std::abs(v - y)));
+  return best;
+}
+
+}  // namespace
+
+TEST(DistanceMap, ExactL1InsideAndOutsideTheImageDespiteTheCrop) {
+  const cv::Mat mask = randomMask(48, 36, 3, 1);
+  const DistanceMap map(mask);
+  EXPECT_LT(map.width() * map.height(), 48 * 36);  // cropped to the people's box
+  for (int v = -10; v < 46; v += 3)
+    for (int u = -12; u < 60; u += 2) ASSERT_EQ(map.atPixel(u, v), bruteForce(mask, u, v)) << u << "," << v;
+}
+
+TEST(DistanceMap, NearestRoundsToThePixelCentreThenMeasures) {
+  cv::Mat mask = cv::Mat::zeros(20, 30, CV_8UC1);
+  mask.at<std::uint8_t>(10, 15) = 1;
+  const DistanceMap map(mask);
+  EXPECT_EQ(map.nearest(15.4f, 10.4f), 0.0f);
+  EXPECT_EQ(map.nearest(15.6f, 10.0f), 1.0f);   // rounds to 16
+  EXPECT_EQ(map.nearest(14.5f, 10.0f), 0.0f);   // a tie rounds up, to 15
+  EXPECT_EQ(map.nearest(-5.2f, 10.0f), 20.0f);  // off the image: |-5 - 15|
+  EXPECT_EQ(map.nearest(100.0f, -40.0f), 85.0f + 50.0f);
+}
+
+TEST(DistanceMap, BilinearIsExactAtCentresAndLinearBetween) {
+  cv::Mat mask = cv::Mat::zeros(20, 30, CV_8UC1);
+  mask.at<std::uint8_t>(10, 15) = 1;
+  const DistanceMap map(mask);
+  EXPECT_FLOAT_EQ(map.bilinear(15.0f, 10.0f), 0.0f);
+  EXPECT_FLOAT_EQ(map.bilinear(12.0f, 10.0f), 3.0f);
+  EXPECT_FLOAT_EQ(map.bilinear(12.25f, 10.0f), 2.75f);
+  EXPECT_FLOAT_EQ(map.bilinear(-3.5f, 10.0f), 18.5f);  // off the image, still exact L1
+  EXPECT_FLOAT_EQ(map.bilinear(15.0f, 13.5f), 3.5f);
+}
+
+TEST(DistanceMap, RejectsAMaskWithoutPeople) {
+  EXPECT_THROW(DistanceMap(cv::Mat::zeros(10, 10, CV_8UC1)), std::invalid_argument);
+}

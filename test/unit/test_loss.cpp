@@ -1,0 +1,124 @@
+// Hand-computed psi (Eq. 2) and Eq. (1)/(3) cases.
+#include "thermal_lidar_calibration/core/loss.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace thermal_lidar_calibration;
+
+namespace {
+
+// 100 x 80 pinhole camera, f = 100, principal point (50, 40); the only person pixel is (60, 40).
+CameraModel smallCamera(std::vector<double> d = {}) {
+  return CameraModel::fromK(100, 80, {100, 0, 50, 0, 100, 40, 0, 0, 1}, d);
+}
+
+CalibrationPair pairWith(std::vector<Eigen::Vector3f> points) {
+  CalibrationPair p;
+  p.mask = cv::Mat::zeros(80, 100, CV_8UC1);
+  p.mask.at<std::uint8_t>(40, 60) = 1;
+  p.points = std::move(points);
+  p.labels.assign(p.points.size(), 1);
+  return p;
+}
+
+double psi(const Eigen::Vector3f& point, const CameraModel& camera = smallCamera(),
+           PixelRule rule = PixelRule::kNearest) {
+  const LossEvaluator loss(camera, {pairWith({point})}, LossConfig{5.0, rule});
+  return loss.pairLoss(0, Extrinsic{});  // identity: LiDAR frame = camera frame
+}
+
+}  // namespace
+
+TEST(Psi, OnAPersonPixelIsZero) { EXPECT_DOUBLE_EQ(psi({0.1f, 0.0f, 1.0f}), 0.0); }
+
+TEST(Psi, InsideTheImageIsTheL1DistanceToTheNearestPersonPixel) {
+  EXPECT_DOUBLE_EQ(psi({0.0f, 0.0f, 1.0f}), 10.0);         // (50, 40)
+  EXPECT_DOUBLE_EQ(psi({0.0f, 0.1f, 2.0f}), 10.0 + 5.0);   // (50, 45)
+}
+
+TEST(Psi, OffTheImageOnEachSideAndAtCornersIsTheExactL1Distance) {
+  // u = 100 x / z + 50, v = 100 y / z + 40; the person pixel is (60, 40).
+  EXPECT_DOUBLE_EQ(psi({-0.7f, 0.0f, 1.0f}), 80.0);              // left: u = -20
+  EXPECT_DOUBLE_EQ(psi({1.0f, 0.0f, 1.0f}), 90.0);               // right: u = 150
+  EXPECT_DOUBLE_EQ(psi({0.1f, -0.9f, 1.0f}), 90.0);              // top: v = -50
+  EXPECT_DOUBLE_EQ(psi({0.1f, 0.9f, 1.0f}), 90.0);               // bottom: v = 130
+  EXPECT_DOUBLE_EQ(psi({-1.0f, -1.0f, 1.0f}), 110.0 + 100.0);    // top-left corner (-50, -60)
+  EXPECT_DOUBLE_EQ(psi({2.0f, 2.0f, 1.0f}), 190.0 + 200.0);      // bottom-right (250, 240)
+}
+
+TEST(Psi, BehindTheCameraScoresC1TimesTheLargerSide) {
+  EXPECT_DOUBLE_EQ(psi({0.1f, 0.0f, -1.0f}), 5.0 * 100.0);
+  EXPECT_DOUBLE_EQ(psi({0.1f, 0.0f, 0.0f}), 5.0 * 100.0);  // z = 0 is not in front
+}
+
+TEST(Psi, FarAwayProjectionsStayFinite) {
+  const double v = psi({1.0f, 0.0f, 1e-30f});
+  EXPECT_TRUE(std::isfinite(v));
+  EXPECT_GT(v, 5.0 * 100.0);
+}
+
+TEST(Psi, DistortionIsAppliedWhenProjecting) {
+  const CameraModel camera = smallCamera({-0.2, 0.05, 0.001, -0.002, 0.0});
+  const Eigen::Vector3f p(0.3f, 0.2f, 1.0f);
+  const Eigen::Vector2d uv = camera.project(p.cast<double>());
+  const double expected = std::abs(std::floor(uv.x() + 0.5) - 60) + std::abs(std::floor(uv.y() + 0.5) - 40);
+  EXPECT_NEAR(psi(p, camera), expected, 1e-9);
+  EXPECT_NE(psi(p, camera), psi(p));  // not the pinhole answer
+}
+
+TEST(Psi, BilinearRuleIsContinuous) {
+  EXPECT_NEAR(psi({0.055f, 0.0f, 1.0f}, smallCamera(), PixelRule::kBilinear), 4.5, 1e-5);
+  EXPECT_NEAR(psi({0.055f, 0.0f, 1.0f}, smallCamera(), PixelRule::kNearest), 4.0, 1e-9);
+}
+
+TEST(Loss, Equation1IsTheMeanOverPointsAndEquation3TheMeanOverPairs) {
+  const CameraModel camera = smallCamera();
+  const std::vector<CalibrationPair> pairs{pairWith({{0.1f, 0, 1}, {0, 0, 1}}),       // 0, 10
+                                           pairWith({{0.1f, 0, -1}, {0.1f, 0, 1}})};  // 500, 0
+  const LossEvaluator loss(camera, pairs, LossConfig{});
+  EXPECT_DOUBLE_EQ(loss.pairLoss(0, Extrinsic{}), 5.0);
+  EXPECT_DOUBLE_EQ(loss.pairLoss(1, Extrinsic{}), 250.0);
+  EXPECT_DOUBLE_EQ(loss.loss(Extrinsic{}), 127.5);
+  EXPECT_DOUBLE_EQ(loss.loss(Extrinsic{}, {1}), 250.0);
+  // The extrinsic moves points: t = (-0.1, 0, 0) shifts u by -10 px at z = 1.
+  Extrinsic shift;
+  shift.translation = Eigen::Vector3d(-0.1, 0, 0);
+  EXPECT_DOUBLE_EQ(loss.pairLoss(0, shift), (10.0 + 20.0) / 2.0);
+}
+
+TEST(Loss, BatchEqualsSingleAndDoesNotDependOnThreads) {
+  const CameraModel camera = CameraModel::fromK(100, 80, {100, 0, 50, 0, 100, 40, 0, 0, 1},
+                                                {-0.1, 0.02, 0, 0, 0});
+  std::vector<Eigen::Vector3f> pts;
+  for (int i = 0; i < 37; ++i) pts.emplace_back(0.01f * i - 0.2f, 0.005f * i - 0.1f, 1.0f + 0.1f * i);
+  const LossEvaluator loss(camera, {pairWith(pts), pairWith(pts)}, LossConfig{});
+  std::vector<Extrinsic> candidates;
+  for (int i = 0; i < 100; ++i) {
+    Extrinsic e;
+    e.rotation_vector = Eigen::Vector3d(0.01 * i, -0.003 * i, 0.002 * i);
+    e.translation = Eigen::Vector3d(0.001 * i, 0, -0.002 * i);
+    candidates.push_back(e);
+  }
+  std::vector<double> one, two;
+  loss.lossBatch(candidates, {}, one, 1);
+  loss.lossBatch(candidates, {}, two, 2);
+  ASSERT_EQ(one.size(), candidates.size());
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    EXPECT_EQ(one[i], two[i]);
+    EXPECT_EQ(one[i], loss.loss(candidates[i]));
+  }
+}
+
+TEST(Loss, RejectsAMaskThatDisagreesWithTheCamera) {
+  CalibrationPair p = pairWith({{0, 0, 1}});
+  p.mask = cv::Mat::ones(10, 10, CV_8UC1);
+  EXPECT_THROW(LossEvaluator(smallCamera(), {p}, LossConfig{}), std::invalid_argument);
+}
+
+TEST(Loss, InsideFractionCountsPointsLandingInTheImage) {
+  const LossEvaluator loss(smallCamera(), {pairWith({{0, 0, 1}, {5, 0, 1}, {0, 0, -1}, {0.1f, 0.1f, 1}})},
+                           LossConfig{});
+  EXPECT_DOUBLE_EQ(loss.insideFraction(0, Extrinsic{}), 0.5);
+}
