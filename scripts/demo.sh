@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# End to end on a fresh Debian 12 machine: installs what it needs, builds, generates a synthetic
+# FieldSAFE-like bag (thermal camera + HDL-32E among people), calibrates it with calibrate_bag
+# (Algorithm 2 + local refinement), and prints the result beside the truth.
+# Output in out/demo/ (bag, truth, result YAML). Options are passed to calibrate_bag, e.g.
+#   scripts/demo.sh --refine none      # the paper's method exactly
+set -euo pipefail
+export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+bash "$repo/scripts/install_deps.sh"
+ws="$(bash "$repo/scripts/build.sh" | tail -n 1)"
+# shellcheck disable=SC1091
+source "$ws/devel/setup.bash"
+out="${TLC_DEMO_OUT:-$repo/out/demo}"
+mkdir -p "$out"
+bin="$ws/devel/lib/thermal_lidar_calibration"
+echo "== generating a synthetic FieldSAFE-like bag" >&2
+"$bin/make_synthetic_bag" --output "$out/demo.bag" --truth "$out/truth.yaml" --seed 1
+echo "== calibrating it" >&2
+"$bin/calibrate_bag" --bag "$out/demo.bag" --output "$out/result.yaml" --truth "$out/truth.yaml" "$@"
+echo "== result file: $out/result.yaml" >&2
