@@ -1,0 +1,83 @@
+#pragma once
+// The world: a flat open field (ground plane z = 0), a vehicle driving at constant speed along
+// straight legs joined by turns (random +-15..45 deg, alternating left/right), small groups of
+// people standing or walking slowly beside each leg, and some cold clutter (posts, bushes).
+// Groups are ~62 m apart along the path so that, while the vehicle approaches one group (in the
+// camera's view), the previous one is usually behind it and out of detection range; the turn
+// comes just after each group, so every approach is straight.
+
+#include "thermal_lidar_calibration/synthetic/body_model.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <cstdint>
+#include <vector>
+
+namespace thermal_lidar_calibration {
+namespace synthetic {
+
+struct SceneConfig {
+  double duration_s = 60.0;          // how long the vehicle drives (sizes the path)
+  double speed_mps = 2.5;            // vehicle speed along the path
+  int people = 0;                    // total people; 0 = about 1.8 per group (automatic)
+  double group_spacing_m = 62.0;     // along the path between consecutive groups
+  double first_group_m = 28.0;       // arc length of the first group ahead of the start
+  double min_lateral_m = 4.0;        // closest a person stands to the path centre line
+  double max_lateral_m = 7.0;        // farthest (some are then outside the camera's view)
+  double min_height_m = 1.55;
+  double max_height_m = 1.95;
+  double walking_fraction = 0.35;    // share of people walking slowly (back and forth)
+  double max_walk_speed_mps = 0.8;
+  double turn_radius_m = 15.0;       // of the turns between legs
+  double min_turn_rad = 0.26;        // turn angle range (about 15..45 deg)
+  double max_turn_rad = 0.79;
+  double turn_after_group_m = 8.0;   // the turn starts this far past each group
+  int clutter_per_group = 1;         // posts/bushes placed near each group
+  void validate() const;             // throws std::invalid_argument
+};
+
+struct VehiclePose {
+  Eigen::Vector2d xy = Eigen::Vector2d::Zero();  // world, m
+  double yaw_rad = 0.0;                          // heading, about +z
+};
+
+struct PersonTrack {
+  int id = 0;                      // persistent, 1-based; used as the cluster label
+  double height_m = 1.75;
+  Eigen::Vector2d anchor_xy = Eigen::Vector2d::Zero();  // centre of the walk
+  double heading_rad = 0.0;        // facing (and walking) direction
+  double walk_speed_mps = 0.0;     // 0 = standing
+  double walk_half_length_m = 0.0; // walks back and forth +- this along its heading
+  double phase_s = 0.0;            // time offset of the walk cycle
+  BodyPose poseAt(double t_s) const;
+};
+
+struct ClutterItem {
+  int id = 0;     // 1-based
+  Solid solid;    // world frame
+};
+
+class Scene {
+ public:
+  Scene(const SceneConfig& config, std::uint64_t seed);
+
+  VehiclePose vehicleAt(double t_s) const;
+  const std::vector<PersonTrack>& people() const { return people_; }
+  const std::vector<ClutterItem>& clutter() const { return clutter_; }
+  // Bodies of all people at time t, world frame, in the order of people().
+  std::vector<Solid> peopleSolidsAt(double t_s) const;
+  const SceneConfig& config() const { return config_; }
+  double pathLength() const { return path_s_.empty() ? 0.0 : path_s_.back(); }
+
+ private:
+  VehiclePose poseAtArcLength(double s) const;
+  SceneConfig config_;
+  std::vector<double> path_s_;           // arc length samples
+  std::vector<Eigen::Vector2d> path_xy_;
+  std::vector<PersonTrack> people_;
+  std::vector<ClutterItem> clutter_;
+};
+
+}  // namespace synthetic
+}  // namespace thermal_lidar_calibration

@@ -1,0 +1,105 @@
+#pragma once
+// Renders the frames of a synthetic drive: LiDAR scan, person clusters, thermal image and person
+// mask, with the detector behaviour and noise of the configuration. ROS-free; frame i depends
+// only on (seed, i), so frames can be rendered in any order or in parallel.
+
+#include "thermal_lidar_calibration/synthetic/noise_model.hpp"
+#include "thermal_lidar_calibration/synthetic/rig_presets.hpp"
+#include "thermal_lidar_calibration/synthetic/scene.hpp"
+#include "thermal_lidar_calibration/synthetic/thermal_renderer.hpp"
+#include "thermal_lidar_calibration/synthetic/world_object.hpp"
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace thermal_lidar_calibration {
+namespace synthetic {
+
+enum class MaskStyle : std::uint8_t { kIds, kBinary };
+
+// What the stand-in person detectors report.
+struct DetectorConfig {
+  double detection_range_m = 30.0;  // horizontal distance LiDAR-person for either modality
+  int min_cluster_points = 5;       // LiDAR detector needs at least this many hits
+  int min_mask_pixels = 40;         // segmentation needs at least this many visible pixels
+};
+
+struct SyntheticConfig {
+  RigPreset rig = fieldsafeRig();
+  SceneConfig scene;                 // duration_s and speed_mps are overwritten from frames/rig
+  NoiseConfig noise;
+  DetectorConfig detector;
+  int frames = 1200;                 // ~60-75 gated pairs with the FieldSAFE-like rig
+  double frame_rate_hz = 10.0;
+  double start_stamp_s = 1.6e9;      // stamp of frame 0
+  std::uint64_t seed = 1;
+  MaskStyle mask_style = MaskStyle::kIds;
+  ImageDepth image_depth = ImageDepth::kMono8;
+  bool full_cloud = false;
+  int full_cloud_azimuth_step = 4;   // keep every n-th azimuth of the full cloud
+  double full_cloud_max_range_m = 40.0;
+  void validate() const;  // throws std::invalid_argument
+};
+
+// Ground truth about one person in one frame.
+struct PersonInFrame {
+  int person_id = 0;
+  double distance_m = 0.0;  // horizontal, from the LiDAR
+  int lidar_hits = 0;
+  int visible_pixels = 0;
+  bool in_cluster = false;  // reported by the LiDAR detector
+  int mask_id = 0;          // value in the mask, 0 = not reported
+};
+
+struct SyntheticFrame {
+  int index = 0;
+  double stamp_s = 0.0;
+  cv::Mat image;  // CV_8UC1 or CV_16UC1
+  cv::Mat mask;   // CV_8UC1: 0 background, ids 1..N (or 255 for the binary style)
+  std::vector<Eigen::Vector3f> cluster_points;  // LiDAR frame
+  std::vector<std::int32_t> cluster_labels;     // person id (false clusters: 1000 + clutter id)
+  std::vector<Eigen::Vector3f> full_points;     // optional decimated full scan
+  std::vector<float> full_intensity;
+  int mask_people = 0;     // as a consumer counts them (distinct ids / components)
+  int cluster_people = 0;  // distinct labels
+  std::vector<PersonInFrame> people;  // every person within detection range
+};
+
+class SyntheticRig {
+ public:
+  explicit SyntheticRig(const SyntheticConfig& config);
+
+  SyntheticFrame render(int index) const;
+  // Lower level: one frame from an explicit world snapshot (objects in the LiDAR frame).
+  SyntheticFrame renderSnapshot(const std::vector<WorldObject>& objects, int index, double stamp_s) const;
+  // The objects of frame `index` in the LiDAR frame (people first, then clutter in range).
+  std::vector<WorldObject> snapshot(int index) const;
+
+  const SyntheticConfig& config() const { return config_; }
+  const Scene& scene() const { return *scene_; }
+  const ThermalRenderer& renderer() const { return *renderer_; }
+  double groundZ() const { return -config_.rig.lidar_height_m; }
+
+ private:
+  SyntheticConfig config_;
+  std::unique_ptr<Scene> scene_;
+  std::unique_ptr<ThermalRenderer> renderer_;
+  std::vector<double> person_grey_;
+};
+
+// Frames a consumer keeps with the paper's gate: equal counts in [1, max_people], then the next
+// `skip_frames` frames are ignored.
+int countGatedPairs(const std::vector<int>& mask_people, const std::vector<int>& cluster_people,
+                    int max_people = 3, int skip_frames = 3);
+int countEqualFrames(const std::vector<int>& mask_people, const std::vector<int>& cluster_people,
+                     int max_people = 3);
+
+// Stable per-stream seed (splitmix64 of the inputs).
+std::uint64_t mixSeed(std::uint64_t seed, std::uint64_t stream, std::uint64_t index);
+
+}  // namespace synthetic
+}  // namespace thermal_lidar_calibration

@@ -1,0 +1,184 @@
+#include "thermal_lidar_calibration/synthetic/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+namespace thermal_lidar_calibration {
+namespace synthetic {
+namespace {
+
+constexpr double kPathStepM = 0.1;
+constexpr double kStrideM = 1.4;  // one full gait cycle
+constexpr double kMinSeparationM = 0.9;
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("scene config: " + what);
+}
+
+}  // namespace
+
+void SceneConfig::validate() const {
+  require(duration_s > 0.0, "duration_s must be > 0");
+  require(speed_mps > 0.0 && speed_mps < 40.0, "speed_mps must be in (0, 40)");
+  require(people >= 0 && people <= 250, "people must be in [0, 250]");
+  require(group_spacing_m >= 5.0, "group_spacing_m must be >= 5");
+  require(min_lateral_m >= 1.0 && max_lateral_m >= min_lateral_m, "need 1 <= min_lateral_m <= max_lateral_m");
+  require(min_height_m > 0.5 && max_height_m >= min_height_m && max_height_m < 2.5,
+          "need 0.5 < min_height_m <= max_height_m < 2.5");
+  require(walking_fraction >= 0.0 && walking_fraction <= 1.0, "walking_fraction must be in [0, 1]");
+  require(max_walk_speed_mps >= 0.0 && max_walk_speed_mps <= 3.0, "max_walk_speed_mps must be in [0, 3]");
+  require(turn_radius_m >= 3.0, "turn_radius_m must be >= 3");
+  require(min_turn_rad >= 0.0 && max_turn_rad >= min_turn_rad && max_turn_rad <= M_PI, "bad turn angles");
+  require(turn_after_group_m >= 0.0, "turn_after_group_m must be >= 0");
+  require(clutter_per_group >= 0, "clutter_per_group must be >= 0");
+}
+
+BodyPose PersonTrack::poseAt(double t_s) const {
+  BodyPose pose;
+  pose.height_m = height_m;
+  pose.heading_rad = heading_rad;
+  pose.ground_xy = anchor_xy;
+  if (walk_speed_mps <= 0.0 || walk_half_length_m <= 0.0) return pose;
+  // Back and forth along the heading: x(t) = L sin(w t), peak speed v = L w.
+  const double w = walk_speed_mps / walk_half_length_m;
+  const double theta = w * (t_s + phase_s);
+  const Eigen::Vector2d dir(std::cos(heading_rad), std::sin(heading_rad));
+  pose.ground_xy = anchor_xy + dir * walk_half_length_m * std::sin(theta);
+  if (std::cos(theta) < 0.0) pose.heading_rad = heading_rad + M_PI;  // walking the other way
+  // Distance walked so far (|dx/dtheta| integrated) drives the gait.
+  const double half_turns = std::floor(theta / M_PI);
+  const double rem = theta - half_turns * M_PI;
+  const double walked = walk_half_length_m * (2.0 * half_turns + (1.0 - std::cos(rem)));
+  pose.gait_phase_rad = 2.0 * M_PI * walked / kStrideM;
+  pose.swing_rad = 0.35 * std::min(1.0, std::abs(std::cos(theta)) * 3.0);
+  return pose;
+}
+
+Scene::Scene(const SceneConfig& config, std::uint64_t seed) : config_(config) {
+  config_.validate();
+  std::mt19937_64 rng(seed ^ 0x5ce9e5ce9eULL);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  auto uniform = [&](double a, double b) { return a + (b - a) * unit(rng); };
+
+  // Groups along the path, then the path: straight legs, a turn just after each group.
+  const double drive_m = config_.speed_mps * config_.duration_s;
+  std::vector<double> group_s;
+  for (double gs = config_.first_group_m; gs < drive_m + 35.0; gs += config_.group_spacing_m) {
+    group_s.push_back(gs);
+  }
+  std::vector<double> turn_start, turn_curvature, turn_length;
+  double turn_sign = unit(rng) < 0.5 ? -1.0 : 1.0;
+  for (const double gs : group_s) {
+    const double angle = uniform(config_.min_turn_rad, config_.max_turn_rad);
+    turn_start.push_back(gs + config_.turn_after_group_m);
+    turn_curvature.push_back(turn_sign / config_.turn_radius_m);
+    turn_length.push_back(angle * config_.turn_radius_m);
+    if (unit(rng) < 0.8) turn_sign = -turn_sign;  // mostly alternate: the path meanders onwards
+  }
+  const double needed_m = drive_m + config_.group_spacing_m + 40.0;
+  double heading = uniform(-M_PI, M_PI);
+  Eigen::Vector2d xy = Eigen::Vector2d::Zero();
+  path_s_.push_back(0.0);
+  path_xy_.push_back(xy);
+  std::size_t turn = 0;
+  for (double s = kPathStepM; s <= needed_m; s += kPathStepM) {
+    while (turn < turn_start.size() && s > turn_start[turn] + turn_length[turn]) ++turn;
+    const double mid = s - 0.5 * kPathStepM;
+    if (turn < turn_start.size() && mid >= turn_start[turn]) heading += turn_curvature[turn] * kPathStepM;
+    xy += kPathStepM * Eigen::Vector2d(std::cos(heading), std::sin(heading));
+    path_s_.push_back(s);
+    path_xy_.push_back(xy);
+  }
+
+  const int groups = static_cast<int>(group_s.size());
+  std::vector<int> group_size(groups, 0);
+  if (config_.people > 0) {
+    for (int i = 0; i < config_.people; ++i) ++group_size[i % groups];
+  } else {
+    for (int g = 0; g < groups; ++g) {
+      const double u = unit(rng);
+      group_size[g] = u < 0.42 ? 1 : (u < 0.78 ? 2 : 3);
+    }
+  }
+
+  int next_id = 1;
+  for (int g = 0; g < groups; ++g) {
+    std::vector<Eigen::Vector2d> placed;
+    for (int i = 0; i < group_size[g]; ++i) {
+      PersonTrack person;
+      person.id = next_id++;
+      person.height_m = uniform(config_.min_height_m, config_.max_height_m);
+      const bool walking = unit(rng) < config_.walking_fraction;
+      for (int attempt = 0; attempt < 50; ++attempt) {
+        const double along = group_s[g] + uniform(-4.0, 4.0);
+        const VehiclePose at = poseAtArcLength(along);
+        const Eigen::Vector2d tangent(std::cos(at.yaw_rad), std::sin(at.yaw_rad));
+        const Eigen::Vector2d normal(-tangent.y(), tangent.x());
+        const double side = unit(rng) < 0.5 ? -1.0 : 1.0;
+        double lateral = uniform(config_.min_lateral_m, config_.max_lateral_m);
+        if (walking) {
+          person.walk_speed_mps = uniform(0.3, std::max(0.3, config_.max_walk_speed_mps));
+          person.walk_half_length_m = uniform(1.0, 3.0);
+          const double deviation = uniform(-0.4, 0.4);  // walk roughly parallel to the path
+          person.heading_rad = at.yaw_rad + deviation + (unit(rng) < 0.5 ? M_PI : 0.0);
+          lateral += person.walk_half_length_m * std::abs(std::sin(deviation));
+          person.phase_s = uniform(0.0, 100.0);
+        } else {
+          person.heading_rad = uniform(-M_PI, M_PI);
+        }
+        person.anchor_xy = at.xy + side * lateral * normal;
+        bool clear = true;
+        for (const auto& q : placed) {
+          const double need = kMinSeparationM + (walking ? 2.0 * person.walk_half_length_m : 0.0);
+          if ((q - person.anchor_xy).norm() < need) clear = false;
+        }
+        if (clear) break;
+      }
+      placed.push_back(person.anchor_xy);
+      people_.push_back(person);
+    }
+    for (int c = 0; c < config_.clutter_per_group; ++c) {
+      const double along = group_s[g] + (unit(rng) < 0.5 ? -1.0 : 1.0) * uniform(14.0, 24.0);
+      const VehiclePose at = poseAtArcLength(along);
+      const Eigen::Vector2d normal(-std::sin(at.yaw_rad), std::cos(at.yaw_rad));
+      const Eigen::Vector2d xy = at.xy + (unit(rng) < 0.5 ? -1.0 : 1.0) * uniform(5.0, 12.0) * normal;
+      ClutterItem item;
+      item.id = static_cast<int>(clutter_.size()) + 1;
+      if (unit(rng) < 0.5) {
+        item.solid = makePost(xy, uniform(1.1, 1.8), uniform(0.07, 0.15));
+      } else {
+        item.solid = makeBush(xy, Eigen::Vector3d(uniform(0.35, 0.7), uniform(0.35, 0.7), uniform(0.45, 0.8)));
+      }
+      clutter_.push_back(item);
+    }
+  }
+}
+
+VehiclePose Scene::poseAtArcLength(double s) const {
+  s = std::max(0.0, std::min(s, path_s_.back()));
+  const auto it = std::upper_bound(path_s_.begin(), path_s_.end(), s);
+  const std::size_t hi = std::min<std::size_t>(std::max<std::ptrdiff_t>(it - path_s_.begin(), 1), path_s_.size() - 1);
+  const std::size_t lo = hi - 1;
+  const double span = path_s_[hi] - path_s_[lo];
+  const double f = span > 0.0 ? (s - path_s_[lo]) / span : 0.0;
+  VehiclePose pose;
+  pose.xy = path_xy_[lo] + f * (path_xy_[hi] - path_xy_[lo]);
+  const Eigen::Vector2d d = path_xy_[hi] - path_xy_[lo];
+  pose.yaw_rad = std::atan2(d.y(), d.x());
+  return pose;
+}
+
+VehiclePose Scene::vehicleAt(double t_s) const { return poseAtArcLength(config_.speed_mps * t_s); }
+
+std::vector<Solid> Scene::peopleSolidsAt(double t_s) const {
+  std::vector<Solid> solids;
+  solids.reserve(people_.size());
+  for (const auto& p : people_) solids.push_back(makePersonBody(p.poseAt(t_s)));
+  return solids;
+}
+
+}  // namespace synthetic
+}  // namespace thermal_lidar_calibration

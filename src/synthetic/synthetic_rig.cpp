@@ -1,0 +1,238 @@
+#include "thermal_lidar_calibration/synthetic/synthetic_rig.hpp"
+
+#include "thermal_lidar_calibration/core/person_counter.hpp"
+#include "thermal_lidar_calibration/synthetic/lidar_scanner.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <random>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+namespace thermal_lidar_calibration {
+namespace synthetic {
+namespace {
+
+constexpr double kWorldCullM = 100.0;  // objects farther than this from the vehicle are dropped
+constexpr std::int32_t kFalseClusterLabelBase = 1000;
+
+}  // namespace
+
+std::uint64_t mixSeed(std::uint64_t seed, std::uint64_t stream, std::uint64_t index) {
+  std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (stream + 1) + 0xBF58476D1CE4E5B9ULL * (index + 1);
+  for (int i = 0; i < 2; ++i) {
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    z ^= z >> 31;
+  }
+  return z;
+}
+
+void SyntheticConfig::validate() const {
+  if (frames < 1 || frames > 100000) throw std::invalid_argument("frames must be in [1, 100000]");
+  if (!(frame_rate_hz > 0.0 && frame_rate_hz <= 100.0)) {
+    throw std::invalid_argument("frame_rate_hz must be in (0, 100]");
+  }
+  if (full_cloud_azimuth_step < 1) throw std::invalid_argument("full_cloud_azimuth_step must be >= 1");
+  if (detector.min_cluster_points < 1 || detector.min_mask_pixels < 1 || detector.detection_range_m <= 0.0) {
+    throw std::invalid_argument("detector: need min_cluster_points >= 1, min_mask_pixels >= 1, range > 0");
+  }
+  rig.camera.validate();
+  rig.lidar.validate();
+  noise.validate();
+  scene.validate();
+}
+
+SyntheticRig::SyntheticRig(const SyntheticConfig& config) : config_(config) {
+  config_.scene.speed_mps = config_.rig.vehicle_speed_mps;
+  config_.scene.duration_s = config_.frames / config_.frame_rate_hz;
+  config_.validate();
+  scene_ = std::make_unique<Scene>(config_.scene, config_.seed);
+  renderer_ = std::make_unique<ThermalRenderer>(config_.rig.camera, config_.rig.truth, groundZ());
+  std::mt19937_64 rng(mixSeed(config_.seed, 7, 0));
+  std::uniform_real_distribution<double> grey(185.0, 215.0);
+  for (std::size_t i = 0; i < scene_->people().size(); ++i) person_grey_.push_back(grey(rng));
+}
+
+std::vector<WorldObject> SyntheticRig::snapshot(int index) const {
+  const double t = index / config_.frame_rate_hz;
+  const VehiclePose vehicle = scene_->vehicleAt(t);
+  Eigen::Isometry3d T_world_lidar = Eigen::Isometry3d::Identity();
+  T_world_lidar.translate(Eigen::Vector3d(vehicle.xy.x(), vehicle.xy.y(), config_.rig.lidar_height_m));
+  T_world_lidar.rotate(Eigen::AngleAxisd(vehicle.yaw_rad, Eigen::Vector3d::UnitZ()));
+  const Eigen::Isometry3d T_lidar_world = T_world_lidar.inverse();
+
+  std::vector<WorldObject> objects;
+  const auto& people = scene_->people();
+  for (std::size_t i = 0; i < people.size(); ++i) {
+    const BodyPose pose = people[i].poseAt(t);
+    if ((pose.ground_xy - vehicle.xy).norm() > kWorldCullM) continue;
+    WorldObject obj;
+    obj.solid = makePersonBody(pose).transformed(T_lidar_world);
+    obj.person_id = people[i].id;
+    obj.grey_level = person_grey_[i];
+    objects.push_back(std::move(obj));
+  }
+  for (const auto& item : scene_->clutter()) {
+    if ((item.solid.boundingCentre().head<2>() - vehicle.xy).norm() > kWorldCullM) continue;
+    WorldObject obj;
+    obj.solid = item.solid.transformed(T_lidar_world);
+    obj.clutter_id = item.id;
+    obj.grey_level = 72.0 + 7.0 * (item.id % 5);
+    objects.push_back(std::move(obj));
+  }
+  return objects;
+}
+
+SyntheticFrame SyntheticRig::render(int index) const {
+  return renderSnapshot(snapshot(index), index, config_.start_stamp_s + index / config_.frame_rate_hz);
+}
+
+SyntheticFrame SyntheticRig::renderSnapshot(const std::vector<WorldObject>& objects, int index,
+                                            double stamp_s) const {
+  std::mt19937_64 rng_detect(mixSeed(config_.seed, 1, static_cast<std::uint64_t>(index)));
+  std::mt19937_64 rng_noise(mixSeed(config_.seed, 2, static_cast<std::uint64_t>(index)));
+  std::mt19937_64 rng_image(mixSeed(config_.seed, 3, static_cast<std::uint64_t>(index)));
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const NoiseConfig& noise = config_.noise;
+  const DetectorConfig& det = config_.detector;
+
+  SyntheticFrame frame;
+  frame.index = index;
+  frame.stamp_s = stamp_s;
+
+  // LiDAR scan with range noise along each ray.
+  std::vector<LidarReturn> returns = castLidarScan(config_.rig.lidar, objects, groundZ());
+  if (noise.range_sigma_m > 0.0) {
+    std::normal_distribution<double> gauss(0.0, noise.range_sigma_m);
+    for (auto& r : returns) {
+      const double noisy = std::max(0.05, r.range_m + gauss(rng_noise));
+      r.point *= static_cast<float>(noisy / r.range_m);
+      r.range_m = static_cast<float>(noisy);
+    }
+  }
+  std::vector<int> hits(objects.size(), 0);
+  for (const auto& r : returns) {
+    if (r.object >= 0) ++hits[static_cast<std::size_t>(r.object)];
+  }
+
+  // Camera: nearest object per pixel.
+  const cv::Mat owners = renderer_->renderOwners(objects);
+  std::vector<int> pixels(objects.size(), 0);
+  for (int v = 0; v < owners.rows; ++v) {
+    const int* own = owners.ptr<int>(v);
+    for (int u = 0; u < owners.cols; ++u) {
+      if (own[u] >= 0) ++pixels[static_cast<std::size_t>(own[u])];
+    }
+  }
+
+  // Detectors. Both random draws are made for every candidate so outcomes stay aligned.
+  std::vector<char> in_cluster(objects.size(), 0), in_mask(objects.size(), 0);
+  for (std::size_t j = 0; j < objects.size(); ++j) {
+    const double u_cluster = unit(rng_detect);
+    const double u_mask = unit(rng_detect);
+    const double dist = objects[j].solid.boundingCentre().head<2>().norm();
+    if (dist > det.detection_range_m) continue;
+    if (objects[j].isPerson()) {
+      in_cluster[j] = hits[j] >= det.min_cluster_points && u_cluster >= noise.miss_rate;
+      in_mask[j] = pixels[j] >= det.min_mask_pixels && u_mask >= noise.miss_rate;
+      PersonInFrame p;
+      p.person_id = objects[j].person_id;
+      p.distance_m = dist;
+      p.lidar_hits = hits[j];
+      p.visible_pixels = pixels[j];
+      p.in_cluster = in_cluster[j] != 0;
+      frame.people.push_back(p);
+    } else {
+      in_cluster[j] = hits[j] >= det.min_cluster_points && u_cluster < noise.false_cluster_rate;
+    }
+  }
+
+  for (const auto& r : returns) {
+    if (r.object < 0 || !in_cluster[static_cast<std::size_t>(r.object)]) continue;
+    const WorldObject& obj = objects[static_cast<std::size_t>(r.object)];
+    frame.cluster_points.push_back(r.point);
+    frame.cluster_labels.push_back(obj.isPerson() ? obj.person_id : kFalseClusterLabelBase + obj.clutter_id);
+  }
+  frame.cluster_people = static_cast<int>(clusterSizes(frame.cluster_labels).size());
+
+  // Mask: ids 1..N by increasing person id.
+  std::vector<int> mask_id(objects.size(), 0);
+  std::map<int, std::size_t> by_person;
+  for (std::size_t j = 0; j < objects.size(); ++j) {
+    if (in_mask[j]) by_person[objects[j].person_id] = j;
+  }
+  int next_id = 1;
+  for (const auto& kv : by_person) mask_id[kv.second] = next_id++;
+  for (auto& p : frame.people) {
+    for (std::size_t j = 0; j < objects.size(); ++j) {
+      if (objects[j].person_id == p.person_id) p.mask_id = mask_id[j];
+    }
+  }
+  frame.mask = cv::Mat::zeros(owners.rows, owners.cols, CV_8UC1);
+  for (int v = 0; v < owners.rows; ++v) {
+    const int* own = owners.ptr<int>(v);
+    std::uint8_t* m = frame.mask.ptr<std::uint8_t>(v);
+    for (int u = 0; u < owners.cols; ++u) {
+      if (own[u] >= 0) m[u] = static_cast<std::uint8_t>(mask_id[static_cast<std::size_t>(own[u])]);
+    }
+  }
+  perturbMaskEdges(frame.mask, noise.mask_edge_px, rng_noise);
+  if (unit(rng_noise) < noise.false_mask_rate) addFalseMaskBlob(frame.mask, next_id, rng_noise);
+  if (config_.mask_style == MaskStyle::kBinary) {
+    frame.mask.setTo(255, frame.mask != 0);
+    frame.mask_people = countMaskPeople(frame.mask);
+  } else {
+    std::set<int> ids;
+    for (int v = 0; v < frame.mask.rows; ++v) {
+      const std::uint8_t* m = frame.mask.ptr<std::uint8_t>(v);
+      for (int u = 0; u < frame.mask.cols; ++u) {
+        if (m[u] != 0) ids.insert(m[u]);
+      }
+    }
+    frame.mask_people = static_cast<int>(ids.size());
+  }
+
+  const double drift = 3.0 * std::sin(0.05 * stamp_s);
+  frame.image = renderer_->renderImage(owners, objects, config_.image_depth, noise.image_noise, drift, rng_image);
+
+  if (config_.full_cloud) {
+    for (const auto& r : returns) {
+      if (r.azimuth % config_.full_cloud_azimuth_step != 0 || r.range_m > config_.full_cloud_max_range_m) continue;
+      frame.full_points.push_back(r.point);
+      float intensity = 15.f + static_cast<float>(r.beam % 4);
+      if (r.object >= 0) intensity = objects[static_cast<std::size_t>(r.object)].isPerson() ? 80.f : 45.f;
+      frame.full_intensity.push_back(intensity);
+    }
+  }
+  return frame;
+}
+
+int countEqualFrames(const std::vector<int>& mask_people, const std::vector<int>& cluster_people, int max_people) {
+  int equal = 0;
+  for (std::size_t i = 0; i < std::min(mask_people.size(), cluster_people.size()); ++i) {
+    if (mask_people[i] == cluster_people[i] && mask_people[i] >= 1 && mask_people[i] <= max_people) ++equal;
+  }
+  return equal;
+}
+
+int countGatedPairs(const std::vector<int>& mask_people, const std::vector<int>& cluster_people, int max_people,
+                    int skip_frames) {
+  int kept = 0, skip = 0;
+  for (std::size_t i = 0; i < std::min(mask_people.size(), cluster_people.size()); ++i) {
+    if (skip > 0) {
+      --skip;
+      continue;
+    }
+    if (mask_people[i] == cluster_people[i] && mask_people[i] >= 1 && mask_people[i] <= max_people) {
+      ++kept;
+      skip = skip_frames;
+    }
+  }
+  return kept;
+}
+
+}  // namespace synthetic
+}  // namespace thermal_lidar_calibration
