@@ -39,6 +39,10 @@ sensor_msgs::Image encodeMonoImage(const cv::Mat& mat, const std::string& frame_
 sensor_msgs::PointCloud2 encodeClusters(const std::vector<Eigen::Vector3f>& points,
                                         const std::vector<std::int32_t>& labels,
                                         const std::string& frame_id, double stamp_s);
+// float32 x, y, z, intensity (dense), e.g. a full LiDAR scan for /lidar/points.
+sensor_msgs::PointCloud2 encodePointsWithIntensity(const std::vector<Eigen::Vector3f>& points,
+                                                   const std::vector<float>& intensity,
+                                                   const std::string& frame_id, double stamp_s);
 
 }  // namespace ros_io
 }  // namespace thermal_lidar_calibration
