@@ -294,7 +294,11 @@ int run(const Options& o) {
   rosbag::Bag bag;
   bag.open(o.output, rosbag::bagmode::Write);
   bag.setCompression(rosbag::compression::LZ4);
-  if (!o.camera_parent.empty()) bag.write("/tf_static", ros::Time(c.start_stamp_s), staticTransform(o, c.rig.truth, c.start_stamp_s));
+  if (!o.camera_parent.empty()) {
+    // One message before everything else (what a latched /tf_static looks like in a bag).
+    const double tf_stamp_s = c.start_stamp_s - o.time_jitter_s - 0.01;
+    bag.write("/tf_static", ros::Time(tf_stamp_s), staticTransform(o, c.rig.truth, tf_stamp_s));
+  }
   const sensor_msgs::CameraInfo info_template = ros_io::cameraInfoFromModel(c.rig.camera);
 
   std::vector<int> mask_people, cluster_people;

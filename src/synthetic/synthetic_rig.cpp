@@ -201,6 +201,7 @@ SyntheticFrame SyntheticRig::renderSnapshot(const std::vector<WorldObject>& obje
   if (config_.full_cloud) {
     for (const auto& r : returns) {
       if (r.azimuth % config_.full_cloud_azimuth_step != 0 || r.range_m > config_.full_cloud_max_range_m) continue;
+      if (r.object < 0 && r.beam % 2 != 0) continue;  // ground: every second beam is plenty
       frame.full_points.push_back(r.point);
       float intensity = 15.f + static_cast<float>(r.beam % 4);
       if (r.object >= 0) intensity = objects[static_cast<std::size_t>(r.object)].isPerson() ? 80.f : 45.f;

@@ -40,8 +40,8 @@ struct SyntheticConfig {
   MaskStyle mask_style = MaskStyle::kIds;
   ImageDepth image_depth = ImageDepth::kMono8;
   bool full_cloud = false;
-  int full_cloud_azimuth_step = 4;   // keep every n-th azimuth of the full cloud
-  double full_cloud_max_range_m = 40.0;
+  int full_cloud_azimuth_step = 8;   // full cloud: every n-th azimuth, every 2nd ground beam,
+  double full_cloud_max_range_m = 30.0;  // and nothing farther (keeps bags small)
   void validate() const;  // throws std::invalid_argument
 };
 
