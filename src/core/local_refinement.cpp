@@ -40,8 +40,23 @@ RefineOutcome LocalRefinement::run(const Extrinsic& start, const std::vector<std
   evaluate({fromVector(x)});
   double fx = losses[0];
 
+  // A pattern search along the parameter axes can stall in a valley that runs diagonally
+  // (rotation about the vertical axis against sideways translation, for example): when the
+  // steps have shrunk, restart from the optimum with the initial steps until a whole restart
+  // gains less than kRestartGain.
+  constexpr double kRestartGain = 1e-6;
+  constexpr int kMaxRestarts = 20;
+  const Vector6 initial_step = step;
+  double restart_from = fx;
+  int restarts = 0;
   while (static_cast<int>(out.evaluations) < config_.max_evaluations) {
     if ((step.array() < min_step.array()).all()) {
+      if (restarts < kMaxRestarts && restart_from - fx > kRestartGain) {
+        ++restarts;
+        restart_from = fx;
+        step = initial_step;
+        continue;
+      }
       out.converged = true;
       break;
     }
