@@ -14,6 +14,8 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <fstream>
 #include <stdexcept>
 
 namespace thermal_lidar_calibration {
@@ -27,6 +29,13 @@ const BagTopicInfo* findTopic(const std::vector<BagTopicInfo>& topics, const std
     if (t.topic == name) return &t;
   }
   return nullptr;
+}
+
+bool startsLikeABag(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char head[13] = {};
+  in.read(head, sizeof(head));
+  return in.gcount() == sizeof(head) && std::string(head, sizeof(head)) == "#ROSBAG V2.0\n";
 }
 
 }  // namespace
@@ -45,6 +54,11 @@ void openBag(rosbag::Bag& bag, const std::string& path) {
     throw std::invalid_argument("bag " + path + " is unindexed (recording was cut short); run "
                                 "'rosbag reindex " + path + "' first");
   } catch (const std::exception& e) {
+    if (startsLikeABag(path)) {
+      throw std::invalid_argument("bag " + path + " is damaged or truncated (" +
+                                  std::string(e.what()) + "); try 'rosbag reindex " + path +
+                                  "' or record it again");
+    }
     throw std::invalid_argument("cannot read " + path + " as a ROS 1 bag (" +
                                 std::string(e.what()) + "); is it a .bag file from rosbag record?");
   }
@@ -154,8 +168,10 @@ BagIngestStats ingestBag(rosbag::Bag& bag, const BagTopics& topics, const CorePa
     if (seen == 1 && callbacks.warn) {
       const std::size_t distinct = stats.bad_message_errors.size();
       if (distinct <= kMaxDistinctWarnings) {
-        callbacks.warn("bad frame at t = " + std::to_string(image->header.stamp.toSec()) +
-                       " s: " + error + " (counted; later ones with this error not shown)");
+        char stamp[32];
+        std::snprintf(stamp, sizeof(stamp), "%.3f", image->header.stamp.toSec());
+        callbacks.warn(std::string("bad frame at t = ") + stamp + " s: " + error +
+                       " (counted; later ones with this error not shown)");
       } else if (distinct == kMaxDistinctWarnings + 1) {
         callbacks.warn("more distinct bad-frame errors: not shown, counted in the summary");
       }
@@ -191,12 +207,11 @@ BagIngestStats ingestBag(rosbag::Bag& bag, const BagTopics& topics, const CorePa
         break;
       }
     }
-  } catch (const std::invalid_argument&) {
-    throw;
   } catch (const std::exception& e) {
     stats.damage = "the bag could not be read past message " +
                    std::to_string(stats.messages_read) + " (" + e.what() + ")";
   }
+  if (!stats.interrupted) sync.flush();  // the last frame of the bag counts too
   return stats;
 }
 

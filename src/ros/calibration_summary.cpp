@@ -41,11 +41,7 @@ std::string formatCalibrationSummary(const SummaryInput& in) {
   s << "calibrate_bag: " << (r.stopped ? "STOPPED EARLY (best so far)" : "done") << "\n";
   s << "  bag              " << in.bag_path << " (" << in.messages_read << " messages, "
     << in.frames << " synchronized frames)\n";
-  s << "  frames           " << in.counts.summary();
-  if (in.counts.nonfinite_points_dropped > 0) {
-    s << "; non-finite points dropped " << in.counts.nonfinite_points_dropped;
-  }
-  s << "\n";
+  s << "  frames           " << in.counts.summary() << "\n";
   s << "  pairs            " << r.pairs_collected << " kept, " << r.pairs_used << " used ("
     << in.algorithm_text << ")\n";
   s << "  rotation_vector  " << fmt("[%.6f, %.6f, %.6f] rad", e.rotation_vector.x(),

@@ -5,9 +5,11 @@
 #include <message_filters/sync_policies/approximate_time.h>
 #include <message_filters/synchronizer.h>
 #include <boost/function.hpp>
+#include <boost/make_shared.hpp>
 #include <ros/init.h>
 #include <ros/time.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -48,6 +50,10 @@ FrameSynchronizer::FrameSynchronizer(int queue_size, double sync_slop_s, Callbac
                        const sensor_msgs::Image::ConstPtr& mask,
                        const sensor_msgs::PointCloud2::ConstPtr& clusters, NullPtr, NullPtr,
                        NullPtr, NullPtr, NullPtr, NullPtr) {
+        if (flushed_ && (image->header.stamp > latest_ || mask->header.stamp > latest_ ||
+                         clusters->header.stamp > latest_)) {
+          return;  // contains a flush() sentinel
+        }
         ++triples_;
         if (callback_) callback_(image, mask, clusters);
       };
@@ -57,13 +63,35 @@ FrameSynchronizer::FrameSynchronizer(int queue_size, double sync_slop_s, Callbac
 FrameSynchronizer::~FrameSynchronizer() = default;
 
 void FrameSynchronizer::addImage(const sensor_msgs::Image::ConstPtr& image) {
-  if (image) impl_->sync.add<0>(image);
+  if (!image || flushed_) return;
+  latest_ = std::max(latest_, image->header.stamp);
+  impl_->sync.add<0>(image);
 }
 void FrameSynchronizer::addMask(const sensor_msgs::Image::ConstPtr& mask) {
-  if (mask) impl_->sync.add<1>(mask);
+  if (!mask || flushed_) return;
+  latest_ = std::max(latest_, mask->header.stamp);
+  impl_->sync.add<1>(mask);
 }
 void FrameSynchronizer::addClusters(const sensor_msgs::PointCloud2::ConstPtr& clusters) {
-  if (clusters) impl_->sync.add<2>(clusters);
+  if (!clusters || flushed_) return;
+  latest_ = std::max(latest_, clusters->header.stamp);
+  impl_->sync.add<2>(clusters);
+}
+
+void FrameSynchronizer::flush() {
+  if (flushed_) return;
+  flushed_ = true;
+  // Far enough beyond the slop that no real message pairs with a sentinel.
+  const ros::Time sentinel = latest_ + ros::Duration(1000.0);
+  auto image = boost::make_shared<sensor_msgs::Image>();
+  image->header.stamp = sentinel;
+  auto mask = boost::make_shared<sensor_msgs::Image>();
+  mask->header.stamp = sentinel;
+  auto clusters = boost::make_shared<sensor_msgs::PointCloud2>();
+  clusters->header.stamp = sentinel;
+  impl_->sync.add<0>(image);
+  impl_->sync.add<1>(mask);
+  impl_->sync.add<2>(clusters);
 }
 
 }  // namespace ros_io

@@ -193,21 +193,21 @@ CoreParameters loadCoreParameters(const ParameterSource& source) {
   readInt(source, "num_threads", 0, 1024, c.num_threads);
 
   readInt(source, "population_size", 2, 100000, e.population_size);
-  readInt(source, "max_iterations", 1, 1000000, e.max_iterations);
-  readDouble(source, "rotation_interval_rad", 0.0, true, 7.0, e.rotation_interval_rad);
+  readInt(source, "max_iterations", 1, 100000, e.max_iterations);
+  readDouble(source, "rotation_interval_rad", 0.0, true, 10.0, e.rotation_interval_rad);
   readDouble(source, "translation_interval_m", 0.0, true, 1000.0, e.translation_interval_m);
   readDouble(source, "elite_fraction", 0.0, false, 1.0, e.elite_fraction);
   readDouble(source, "crossover_fraction", 0.0, false, 1.0, e.crossover_fraction);
   readInt(source, "initial_population_factor", 1, 1000, e.initial_population_factor);
-  readDouble(source, "sigma_rot_rad", 0.0, false, 3.5, e.sigma_rot_rad);
-  readDouble(source, "sigma_trans_m", 0.0, false, 100.0, e.sigma_trans_m);
+  readDouble(source, "sigma_rot_rad", 0.0, true, 3.5, e.sigma_rot_rad);
+  readDouble(source, "sigma_trans_m", 0.0, true, 100.0, e.sigma_trans_m);
   readDouble(source, "min_inside_fraction", 0.0, false, 1.0, e.min_inside_fraction);
-  readDouble(source, "behind_camera_penalty_c1", 0.0, false, 1e6, c.behind_camera_penalty_c1);
+  readDouble(source, "behind_camera_penalty_c1", 0.0, true, 1e6, c.behind_camera_penalty_c1);
 
   readInt(source, "min_sample_large", 1, 100000, o.min_sample_large);
   readInt(source, "min_sample_small", 1, 100000, o.min_sample_small);
   readInt(source, "min_sample_switch", 1, 100000, o.min_sample_switch);
-  readInt(source, "outlier_iterations", 1, 1000, o.iterations);
+  readInt(source, "outlier_iterations", 0, 1000, o.iterations);
   readDouble(source, "ratio_solution", 0.0, false, 1.0, o.ratio_solution);
   readDouble(source, "threshold_sample_px", 0.0, true, 1e6, o.threshold_px);
 

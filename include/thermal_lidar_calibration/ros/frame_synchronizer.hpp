@@ -4,6 +4,7 @@
 // and a maximum interval (sync_slop). Feed it messages; it calls back with matched triples.
 
 #include <sensor_msgs/Image.h>
+#include <ros/time.h>
 #include <sensor_msgs/PointCloud2.h>
 
 #include <cstdint>
@@ -31,6 +32,11 @@ class FrameSynchronizer {
   void addMask(const sensor_msgs::Image::ConstPtr& mask);
   void addClusters(const sensor_msgs::PointCloud2::ConstPtr& clusters);
 
+  // End of input (offline only): releases the last complete set, which ApproximateTime
+  // otherwise holds until a later message proves it optimal. Feeds one empty sentinel per topic
+  // far in the future; a set made of sentinels is never passed on. Add nothing afterwards.
+  void flush();
+
   std::uint64_t triples() const { return triples_; }  // callbacks made so far
 
  private:
@@ -38,6 +44,8 @@ class FrameSynchronizer {
   std::unique_ptr<Impl> impl_;
   Callback callback_;
   std::uint64_t triples_ = 0;
+  ros::Time latest_;  // latest header stamp added, for flush()
+  bool flushed_ = false;
 };
 
 }  // namespace ros_io
