@@ -1,0 +1,284 @@
+// calibrate_bag end to end: one test per bad input (one-line error, non-zero exit, no crash) and
+// positive runs on small bags written here with the rosbag C++ API.
+
+#include "bag_fixture.hpp"
+
+#include <gtest/gtest.h>
+#include <ros/time.h>
+#include <yaml-cpp/yaml.h>
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#ifndef CALIBRATE_BAG_EXE
+#error "CALIBRATE_BAG_EXE must be defined to the calibrate_bag binary"
+#endif
+
+namespace {
+
+using tlc_cli_test::BagSpec;
+
+struct RunResult {
+  int exit_code = -1;
+  bool signalled = false;
+  std::string out, err;
+};
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class CalibrateBagCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    char pattern[] = "/tmp/tlc_cli_XXXXXX";
+    const char* d = mkdtemp(pattern);
+    ASSERT_NE(d, nullptr);
+    dir_ = d;
+    // A small, fast optimizer; every frame is a candidate.
+    std::ofstream(dir_ + "/fast.yaml") << "population_size: 150\nmax_iterations: 80\n"
+                                          "skip_frames: 0\nseed: 3\nnum_threads: 1\n";
+  }
+  void TearDown() override {
+    if (std::getenv("TLC_KEEP_TEST_DIR")) {
+      std::printf("kept %s\n", dir_.c_str());
+    } else {
+      std::system(("rm -rf '" + dir_ + "'").c_str());
+    }
+  }
+
+  std::string bag(const BagSpec& spec, const std::string& name = "in.bag") {
+    const std::string path = dir_ + "/" + name;
+    tlc_cli_test::writeBag(path, spec);
+    return path;
+  }
+
+  RunResult run(const std::string& args) {
+    const std::string out = dir_ + "/stdout.txt", err = dir_ + "/stderr.txt";
+    const std::string cmd =
+        std::string("'") + CALIBRATE_BAG_EXE + "' " + args + " >'" + out + "' 2>'" + err + "'";
+    const int status = std::system(cmd.c_str());
+    RunResult r;
+    if (WIFEXITED(status)) {
+      r.exit_code = WEXITSTATUS(status);
+      r.signalled = r.exit_code >= 128;  // the shell reports a signal as 128 + n
+    } else {
+      r.signalled = true;
+    }
+    r.out = readFile(out);
+    r.err = readFile(err);
+    return r;
+  }
+
+  // The bad-input contract: exit 1 (or 2), no crash, exactly one error line, and it is the last.
+  static std::string expectOneLineError(const RunResult& r, int code = 1) {
+    EXPECT_FALSE(r.signalled) << r.err;
+    EXPECT_EQ(r.exit_code, code) << r.err;
+    std::istringstream lines(r.err);
+    std::string line, error_line, last;
+    int errors = 0;
+    while (std::getline(lines, line)) {
+      if (line.rfind("calibrate_bag: error: ", 0) == 0) {
+        ++errors;
+        error_line = line;
+      }
+      if (!line.empty()) last = line;
+    }
+    EXPECT_EQ(errors, 1) << r.err;
+    EXPECT_EQ(last, error_line) << r.err;
+    return error_line;
+  }
+
+  std::string common() const { return "--output '" + dir_ + "/out.yaml' --quiet "; }
+
+  std::string dir_;
+};
+
+TEST_F(CalibrateBagCli, NoSuchBag) {
+  const RunResult r = run("--bag '" + dir_ + "/missing.bag' " + common());
+  const std::string e = expectOneLineError(r);
+  EXPECT_NE(e.find("no such file"), std::string::npos) << e;
+}
+
+TEST_F(CalibrateBagCli, CorruptFileIsNotABag) {
+  std::ofstream(dir_ + "/corrupt.bag") << "this is not a bag\n" << std::string(5000, 'x');
+  const RunResult r = run("--bag '" + dir_ + "/corrupt.bag' " + common());
+  const std::string e = expectOneLineError(r);
+  EXPECT_NE(e.find("as a ROS 1 bag"), std::string::npos) << e;
+}
+
+TEST_F(CalibrateBagCli, TruncatedBag) {
+  BagSpec spec;
+  spec.frames = 6;
+  const std::string path = bag(spec);
+  const std::string data = readFile(path);
+  std::ofstream(dir_ + "/cut.bag", std::ios::binary) << data.substr(0, data.size() / 2);
+  const RunResult r = run("--bag '" + dir_ + "/cut.bag' " + common());
+  const std::string e = expectOneLineError(r);
+  EXPECT_NE(e.find("is damaged or truncated"), std::string::npos) << e;
+}
+
+TEST_F(CalibrateBagCli, TopicNotInBagListsTheBagTopics) {
+  BagSpec spec;
+  spec.frames = 4;
+  const RunResult r = run("--bag '" + bag(spec) + "' --mask-topic /seg/masks " + common());
+  const std::string e = expectOneLineError(r);
+  EXPECT_NE(e.find("topic /seg/masks is not in bag"), std::string::npos) << e;
+  EXPECT_NE(e.find("/thermal/human_mask (sensor_msgs/Image, 4)"), std::string::npos) << e;
+  EXPECT_NE(e.find("--mask-topic"), std::string::npos) << e;
+}
+
+TEST_F(CalibrateBagCli, WrongMaskEncodingIsCountedAndReported) {
+  BagSpec spec;
+  spec.frames = 8;
+  spec.mask_encoding = "rgb8";
+  const RunResult r = run("--bag '" + bag(spec) + "' --config '" + dir_ + "/fast.yaml' " + common());
+  const std::string e = expectOneLineError(r);
+  EXPECT_NE(e.find("no pairs kept"), std::string::npos) << e;
+  EXPECT_NE(e.find("bad 8"), std::string::npos) << e;
+  EXPECT_NE(e.find("rgb8"), std::string::npos) << e;
+  EXPECT_NE(r.err.find("calibrate_bag: warning: bad frame"), std::string::npos) << r.err;
+}
+
+TEST_F(CalibrateBagCli, CloudWithoutLabel) {
+  BagSpec spec;
+  spec.frames = 6;
+  spec.label_field = false;
+  const RunResult r = run("--bag '" + bag(spec) + "' --config '" + dir_ + "/fast.yaml' " + common());
+  const std::string e = expectOneLineError(r);
+  EXPECT_NE(e.find("no 'label' field (fields: x, y, z, intensity)"), std::string::npos) << e;
+}
+
+TEST_F(CalibrateBagCli, ImageSizeDisagreesWithCameraInfo) {
+  BagSpec spec;
+  spec.frames = 6;
+  spec.camera_info_width = 320;
+  const RunResult r = run("--bag '" + bag(spec) + "' --config '" + dir_ + "/fast.yaml' " + common());
+  const std::string e = expectOneLineError(r);
+  EXPECT_NE(e.find("mask is 160x128 but camera_info says 320x128"), std::string::npos) << e;
+}
+
+TEST_F(CalibrateBagCli, NoCameraInfoAndNoFlag) {
+  BagSpec spec;
+  spec.frames = 4;
+  spec.write_camera_info = false;
+  const RunResult r = run("--bag '" + bag(spec) + "' " + common());
+  const std::string e = expectOneLineError(r);
+  EXPECT_NE(e.find("pass --camera-info FILE.yaml"), std::string::npos) << e;
+}
+
+TEST_F(CalibrateBagCli, ZeroPairsKeptPrintsRejectionCounts) {
+  BagSpec spec;
+  spec.frames = 10;
+  spec.people_in_mask = false;
+  const RunResult r = run("--bag '" + bag(spec) + "' --config '" + dir_ + "/fast.yaml' " + common());
+  const std::string e = expectOneLineError(r);
+  EXPECT_NE(e.find("no pairs kept from 10 synchronized frames (kept 0; rejected: unequal 10"),
+            std::string::npos)
+      << e;
+}
+
+TEST_F(CalibrateBagCli, EmptyBag) {
+  { rosbag::Bag empty(dir_ + "/empty.bag", rosbag::bagmode::Write); }
+  const RunResult r = run("--bag '" + dir_ + "/empty.bag' " + common());
+  const std::string e = expectOneLineError(r);
+  EXPECT_NE(e.find("is empty"), std::string::npos) << e;
+}
+
+TEST_F(CalibrateBagCli, UsageErrorsExitWithTwo) {
+  expectOneLineError(run(""), 2);
+  expectOneLineError(run("--bag x.bag --output y.yaml --algorithm 3"), 2);
+  expectOneLineError(run("--bag x.bag --output y.yaml --frobnicate"), 2);
+  const RunResult help = run("--help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.out.find("usage: calibrate_bag"), std::string::npos);
+}
+
+TEST_F(CalibrateBagCli, BadConfigValueNamesKeyValueAndRange) {
+  BagSpec spec;
+  spec.frames = 4;
+  std::ofstream(dir_ + "/bad.yaml") << "population_size: -3\n";
+  const RunResult r = run("--bag '" + bag(spec) + "' --config '" + dir_ + "/bad.yaml' " + common());
+  const std::string e = expectOneLineError(r);
+  EXPECT_NE(e.find("parameter 'population_size' = -3: must be an integer in [2, 100000]"),
+            std::string::npos)
+      << e;
+}
+
+TEST_F(CalibrateBagCli, CalibratesASyntheticBag) {
+  BagSpec spec;
+  const std::string truth = dir_ + "/truth.yaml";
+  tlc_cli_test::writeTruthFile(truth);
+  std::ofstream(dir_ + "/fast.yaml", std::ios::app) << "typo_key: 1\n";
+  const RunResult r = run("--bag '" + bag(spec) + "' --config '" + dir_ + "/fast.yaml' --output '" +
+                          dir_ + "/out.yaml' --truth '" + truth + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("unknown keys ignored (possible typo): typo_key"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.out.find("rosrun tf2_ros static_transform_publisher"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("velodyne thermal_optical"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("rotation error"), std::string::npos) << r.out;
+
+  const YAML::Node y = YAML::LoadFile(dir_ + "/out.yaml");
+  EXPECT_EQ(y["lidar_frame"].as<std::string>(), "velodyne");
+  EXPECT_EQ(y["camera_frame"].as<std::string>(), "thermal_optical");
+  EXPECT_EQ(y["pairs_collected"].as<int>(), 40);
+  EXPECT_GE(y["pairs_used"].as<int>(), 30);
+  EXPECT_LT(y["loss"].as<double>(), 1.0);
+  Eigen::Vector3d r_vec, t_vec;
+  for (int i = 0; i < 3; ++i) {
+    r_vec[i] = y["rotation_vector"][i].as<double>();
+    t_vec[i] = y["translation"][i].as<double>();
+  }
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(r_vec.norm(), r_vec.normalized()).toRotationMatrix();
+  const double angle_deg =
+      Eigen::AngleAxisd(R.transpose() * tlc_cli_test::truthRotation()).angle() * 180.0 / M_PI;
+  EXPECT_LT(angle_deg, 1.0);
+  EXPECT_LT((t_vec - tlc_cli_test::truthTranslation()).norm(), 0.10);
+}
+
+TEST_F(CalibrateBagCli, NonFinitePointsAreDroppedNotAnError) {
+  BagSpec spec;
+  spec.nonfinite_every = 10;
+  const RunResult r = run("--bag '" + bag(spec) + "' --config '" + dir_ + "/fast.yaml' --output '" +
+                          dir_ + "/out.yaml' --algorithm 1 --refine none");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("non-finite points dropped"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("non-finite points dropped 0"), std::string::npos) << r.out;
+}
+
+TEST_F(CalibrateBagCli, CameraInfoFileReplacesTheBagTopic) {
+  BagSpec spec;
+  spec.write_camera_info = false;
+  spec.frames = 24;
+  tlc_cli_test::writeCameraInfoYaml(spec, dir_ + "/cam.yaml");
+  const RunResult r = run("--bag '" + bag(spec) + "' --config '" + dir_ + "/fast.yaml' --output '" +
+                          dir_ + "/out.yaml' --camera-info '" + dir_ +
+                          "/cam.yaml' --algorithm 1 --refine none --quiet");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(YAML::LoadFile(dir_ + "/out.yaml")["rotation_vector"]);
+}
+
+#ifdef MAKE_SYNTHETIC_BAG_EXE
+TEST_F(CalibrateBagCli, CalibratesAMakeSyntheticBagBag) {
+  const std::string gen = std::string("'") + MAKE_SYNTHETIC_BAG_EXE + "' --help >/dev/null 2>&1";
+  if (std::system(gen.c_str()) != 0) GTEST_SKIP() << "make_synthetic_bag --help failed";
+  GTEST_SKIP() << "generator flags not agreed yet";
+}
+#endif
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ros::Time::init();
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}

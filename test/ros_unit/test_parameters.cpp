@@ -1,0 +1,146 @@
+// The parameter table: defaults = Table 1, overrides from YAML, and the error messages.
+
+#include "thermal_lidar_calibration/ros/parameters.hpp"
+#include "thermal_lidar_calibration/ros/unknown_parameters.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <stdexcept>
+
+namespace tlc = thermal_lidar_calibration;
+using namespace tlc::ros_io;
+
+namespace {
+
+std::string yamlFile(const std::string& text) {
+  static int counter = 0;
+  char pattern[] = "/tmp/tlc_params_XXXXXX";
+  const char* dir = mkdtemp(pattern);
+  const std::string path = std::string(dir ? dir : "/tmp") + "/p" + std::to_string(counter++) +
+                           ".yaml";
+  std::ofstream(path) << text;
+  return path;
+}
+
+CoreParameters loadText(const std::string& text) {
+  return loadCoreParameters(*makeYamlParameterSource(yamlFile(text)));
+}
+
+std::string errorOf(const std::string& text) {
+  try {
+    loadText(text);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "<no exception>";
+}
+
+}  // namespace
+
+TEST(Parameters, DefaultsAreTable1) {
+  const CoreParameters p = loadText("");
+  const auto& c = p.calibration;
+  EXPECT_EQ(c.algorithm, tlc::Algorithm::kOutlierRejection);
+  EXPECT_EQ(c.refine.mode, tlc::RefineMode::kLocal);
+  EXPECT_EQ(c.evolution.population_size, 500);
+  EXPECT_EQ(c.evolution.max_iterations, 400);
+  EXPECT_DOUBLE_EQ(c.evolution.rotation_interval_rad, 3.5);
+  EXPECT_DOUBLE_EQ(c.evolution.translation_interval_m, 1.0);
+  EXPECT_DOUBLE_EQ(c.evolution.elite_fraction, 0.15);
+  EXPECT_DOUBLE_EQ(c.evolution.crossover_fraction, 0.40);
+  EXPECT_EQ(c.evolution.initial_population_factor, 5);
+  EXPECT_DOUBLE_EQ(c.evolution.sigma_rot_rad, 0.02);
+  EXPECT_DOUBLE_EQ(c.evolution.sigma_trans_m, 0.02);
+  EXPECT_DOUBLE_EQ(c.evolution.min_inside_fraction, 0.5);
+  EXPECT_DOUBLE_EQ(c.behind_camera_penalty_c1, 5.0);
+  EXPECT_EQ(c.outlier.min_sample_large, 20);
+  EXPECT_EQ(c.outlier.min_sample_small, 15);
+  EXPECT_EQ(c.outlier.min_sample_switch, 40);
+  EXPECT_EQ(c.outlier.iterations, 2);
+  EXPECT_DOUBLE_EQ(c.outlier.ratio_solution, 0.7);
+  EXPECT_DOUBLE_EQ(c.outlier.threshold_px, 2.0);
+  EXPECT_EQ(p.gate.max_people, 3);
+  EXPECT_EQ(p.gate.skip_frames, 3);
+  EXPECT_DOUBLE_EQ(p.sync_slop_s, 0.05);
+  EXPECT_EQ(p.sync_queue_size, 30);
+  EXPECT_EQ(p.pairs_required, 60);
+}
+
+TEST(Parameters, ShippedDefaultYamlMatchesTheStructsAndListsEveryKey) {
+  const std::string path = "../config/default.yaml";
+  const CoreParameters from_file = loadCoreParameters(*makeYamlParameterSource(path));
+  EXPECT_EQ(describeCoreParameters(from_file), describeCoreParameters(CoreParameters{}));
+  const std::vector<std::string> keys = yamlFileKeys(path);
+  for (const std::string& key : knownParameterKeys()) {
+    EXPECT_NE(std::find(keys.begin(), keys.end(), key), keys.end()) << key << " not documented";
+  }
+  EXPECT_TRUE(unknownParameterKeys(keys).empty());
+}
+
+TEST(Parameters, RigOverlays) {
+  const CoreParameters ms2 = loadCoreParameters(*makeYamlParameterSource("../config/ms2.yaml"));
+  EXPECT_DOUBLE_EQ(ms2.calibration.outlier.threshold_px, 1.5);
+  const CoreParameters fs =
+      loadCoreParameters(*makeYamlParameterSource("../config/fieldsafe.yaml"));
+  EXPECT_DOUBLE_EQ(fs.calibration.outlier.threshold_px, 2.0);
+}
+
+TEST(Parameters, OverridesEveryType) {
+  const CoreParameters p = loadText(
+      "algorithm: 1\nrefine: none\nseed: 42\npopulation_size: 50\nsigma_rot_rad: 0.05\n"
+      "sync_slop: 0.1\nskip_frames: 0\nthreshold_sample_px: 3\n");
+  EXPECT_EQ(p.calibration.algorithm, tlc::Algorithm::kPlain);
+  EXPECT_EQ(p.calibration.refine.mode, tlc::RefineMode::kNone);
+  EXPECT_EQ(p.calibration.seed, 42u);
+  EXPECT_EQ(p.calibration.evolution.population_size, 50);
+  EXPECT_DOUBLE_EQ(p.calibration.evolution.sigma_rot_rad, 0.05);
+  EXPECT_DOUBLE_EQ(p.sync_slop_s, 0.1);
+  EXPECT_EQ(p.gate.skip_frames, 0);
+  EXPECT_DOUBLE_EQ(p.calibration.outlier.threshold_px, 3.0);  // an integer is a fine double
+}
+
+TEST(Parameters, BadValuesNameKeyValueAndRange) {
+  EXPECT_EQ(errorOf("population_size: -3\n"),
+            "parameter 'population_size' = -3: must be an integer in [2, 100000]");
+  EXPECT_EQ(errorOf("population_size: 1.5\n"),
+            "parameter 'population_size' = 1.5: must be an integer in [2, 100000]");
+  EXPECT_EQ(errorOf("elite_fraction: 1.5\n"),
+            "parameter 'elite_fraction' = 1.5: must be a number in [0, 1]");
+  EXPECT_EQ(errorOf("sync_slop: 0\n"), "parameter 'sync_slop' = 0: must be a number in (0, 10]");
+  EXPECT_EQ(errorOf("refine: global\n"),
+            "parameter 'refine' = 'global': must be 'none' or 'local'");
+  EXPECT_EQ(errorOf("algorithm: 3\n"),
+            "parameter 'algorithm' = 3: must be 1 (plain evolution) or 2 (with outlier rejection)");
+  EXPECT_EQ(errorOf("max_people: abc\n"),
+            "parameter 'max_people' = 'abc': must be an integer in [1, 1000]");
+  EXPECT_EQ(errorOf("threshold_sample_px: .nan\n").rfind("parameter 'threshold_sample_px' = ", 0),
+            0u);
+  // Cross-key rules come from the core's validate().
+  EXPECT_NE(errorOf("elite_fraction: 0.7\ncrossover_fraction: 0.7\n").find("must not exceed 1"),
+            std::string::npos);
+}
+
+TEST(Parameters, BadFiles) {
+  EXPECT_THROW(makeYamlParameterSource("/nonexistent/params.yaml"), std::invalid_argument);
+  EXPECT_THROW(makeYamlParameterSource(yamlFile("a: [1,\n")), std::invalid_argument);
+  EXPECT_THROW(makeYamlParameterSource(yamlFile("- 1\n- 2\n")), std::invalid_argument);
+}
+
+TEST(Parameters, UnknownKeysAreReported) {
+  const auto keys = yamlFileKeys(yamlFile("populaton_size: 5\nseed: 2\noutput_file: x.yaml\n"));
+  EXPECT_EQ(unknownParameterKeys(keys), std::vector<std::string>{"populaton_size"});
+  // Unknown keys are ignored by the loader.
+  EXPECT_EQ(loadText("populaton_size: 5\n").calibration.evolution.population_size, 500);
+}
+
+TEST(Parameters, DescribeListsEveryCoreKeyOnce) {
+  const auto described = describeCoreParameters(CoreParameters{});
+  EXPECT_EQ(described.size(), 32u);
+  for (const auto& kv : described) {
+    const auto& known = knownParameterKeys();
+    EXPECT_NE(std::find(known.begin(), known.end(), kv.first), known.end()) << kv.first;
+  }
+}

@@ -1,0 +1,126 @@
+// Result file: every INTERFACE key, the extras, and reading it (or a truth file) back.
+
+#include "thermal_lidar_calibration/ros/result_file.hpp"
+
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <stdexcept>
+
+namespace tlc = thermal_lidar_calibration;
+using namespace tlc::ros_io;
+
+namespace {
+
+std::string tempDir() {
+  char pattern[] = "/tmp/tlc_result_XXXXXX";
+  const char* dir = mkdtemp(pattern);
+  return dir ? dir : "/tmp";
+}
+
+tlc::CalibrationResult sampleResult() {
+  tlc::CalibrationResult r;
+  r.extrinsic.rotation_vector = Eigen::Vector3d(1.2, -1.1, 1.3);
+  r.extrinsic.translation = Eigen::Vector3d(0.05, -0.31, 0.12);
+  r.loss = 0.83;
+  r.loss_bilinear = 0.79;
+  r.evolution_extrinsic.rotation_vector = Eigen::Vector3d(1.21, -1.09, 1.29);
+  r.evolution_extrinsic.translation = Eigen::Vector3d(0.06, -0.3, 0.1);
+  r.evolution_loss = 0.91;
+  r.pair_losses = {0.5, 4.0, 0.7};
+  r.inliers = {true, false, true};
+  r.pairs_used = 2;
+  r.pairs_collected = 3;
+  r.evaluations = 12345;
+  r.seconds = 3.25;
+  return r;
+}
+
+}  // namespace
+
+TEST(ResultFile, HasEveryInterfaceKeyAndRoundTrips) {
+  const std::string path = tempDir() + "/result.yaml";
+  ResultContext ctx;
+  ctx.lidar_frame = "velodyne";
+  ctx.camera_frame = "thermal_optical";
+  ctx.source = "in.bag";
+  ctx.pair_stamps_s = {10.0, 11.5, 12.25};
+  ctx.parameters.calibration.seed = 7;
+  const tlc::CalibrationResult r = sampleResult();
+  writeResultFile(path, r, ctx);
+
+  const YAML::Node y = YAML::LoadFile(path);
+  for (const char* key : {"lidar_frame", "camera_frame", "rotation_vector", "translation",
+                          "rotation_matrix", "quaternion_xyzw", "loss", "pairs_used",
+                          "pairs_collected", "loss_bilinear", "evolution", "pairs", "parameters",
+                          "algorithm", "refine", "seed", "run_time_s", "evaluations", "source",
+                          "created"}) {
+    EXPECT_TRUE(y[key]) << key;
+  }
+  EXPECT_EQ(y["lidar_frame"].as<std::string>(), "velodyne");
+  EXPECT_EQ(y["camera_frame"].as<std::string>(), "thermal_optical");
+  EXPECT_DOUBLE_EQ(y["loss"].as<double>(), 0.83);
+  EXPECT_EQ(y["pairs_used"].as<int>(), 2);
+  EXPECT_EQ(y["pairs_collected"].as<int>(), 3);
+  EXPECT_EQ(y["rotation_matrix"].size(), 9u);
+  EXPECT_EQ(y["quaternion_xyzw"].size(), 4u);
+  EXPECT_EQ(y["seed"].as<int>(), 7);
+  EXPECT_EQ(y["algorithm"].as<int>(), 2);
+  EXPECT_EQ(y["refine"].as<std::string>(), "local");
+  ASSERT_EQ(y["pairs"].size(), 3u);
+  EXPECT_DOUBLE_EQ(y["pairs"][1]["stamp"].as<double>(), 11.5);
+  EXPECT_DOUBLE_EQ(y["pairs"][1]["loss"].as<double>(), 4.0);
+  EXPECT_FALSE(y["pairs"][1]["inlier"].as<bool>());
+  EXPECT_EQ(y["parameters"]["population_size"].as<int>(), 500);
+  EXPECT_DOUBLE_EQ(y["evolution"]["loss"].as<double>(), 0.91);
+
+  // The quaternion and matrix agree with the rotation vector.
+  const Eigen::Matrix3d R = r.extrinsic.rotationMatrix();
+  for (int i = 0; i < 9; ++i) {
+    EXPECT_NEAR(y["rotation_matrix"][i].as<double>(), R(i / 3, i % 3), 1e-9);
+  }
+  const Eigen::Quaterniond q(y["quaternion_xyzw"][3].as<double>(),
+                             y["quaternion_xyzw"][0].as<double>(),
+                             y["quaternion_xyzw"][1].as<double>(),
+                             y["quaternion_xyzw"][2].as<double>());
+  EXPECT_LT((q.toRotationMatrix() - R).norm(), 1e-9);
+
+  const tlc::Extrinsic back = readExtrinsicFile(path);
+  EXPECT_LT((back.rotation_vector - r.extrinsic.rotation_vector).norm(), 1e-9);
+  EXPECT_LT((back.translation - r.extrinsic.translation).norm(), 1e-12);
+}
+
+TEST(ResultFile, ReadsRotationMatrixOnlyFiles) {
+  const std::string path = tempDir() + "/truth.yaml";
+  tlc::Extrinsic e;
+  e.rotation_vector = Eigen::Vector3d(0.3, -0.2, 0.1);
+  e.translation = Eigen::Vector3d(1, 2, 3);
+  const Eigen::Matrix3d R = e.rotationMatrix();
+  std::ofstream out(path);
+  out << "translation: [1, 2, 3]\nrotation_matrix: [";
+  for (int i = 0; i < 9; ++i) out << (i ? ", " : "") << std::setprecision(17) << R(i / 3, i % 3);
+  out << "]\n";
+  out.close();
+  const tlc::Extrinsic back = readExtrinsicFile(path);
+  EXPECT_LT((back.rotation_vector - e.rotation_vector).norm(), 1e-9);
+}
+
+TEST(ResultFile, BadExtrinsicFilesAreErrors) {
+  const std::string dir = tempDir();
+  EXPECT_THROW(readExtrinsicFile(dir + "/missing.yaml"), std::invalid_argument);
+  std::ofstream(dir + "/no_t.yaml") << "rotation_vector: [0, 0, 0]\n";
+  EXPECT_THROW(readExtrinsicFile(dir + "/no_t.yaml"), std::invalid_argument);
+  std::ofstream(dir + "/no_r.yaml") << "translation: [0, 0, 0]\n";
+  EXPECT_THROW(readExtrinsicFile(dir + "/no_r.yaml"), std::invalid_argument);
+  std::ofstream(dir + "/bad_r.yaml") << "translation: [0, 0, 0]\nrotation_matrix: [2, 0, 0, 0, 1, "
+                                        "0, 0, 0, 1]\n";
+  EXPECT_THROW(readExtrinsicFile(dir + "/bad_r.yaml"), std::invalid_argument);
+}
+
+TEST(ResultFile, UnwritablePathIsARuntimeError) {
+  EXPECT_THROW(writeResultFile("/nonexistent_dir/result.yaml", sampleResult(), ResultContext{}),
+               std::runtime_error);
+}
