@@ -1,0 +1,76 @@
+#pragma once
+// The node's dataset on disk: every kept pair is appended to a ROS 1 bag as soon as it is kept,
+// laid out with the INTERFACE topics (/thermal/image_raw, /thermal/human_mask,
+// /lidar/human_clusters, /thermal/camera_info) so calibrate_bag can re-run on it. The original
+// messages are stored (not the binarised masks), so a re-run decodes exactly what the node saw.
+//
+// Crash safety: each pair is written by opening the bag in append mode, writing and closing it.
+// rosbag's append truncates the index and rewrites the file header, so before every append the
+// bytes it will overwrite (file header and index) go to "<bag>.journal"; after a clean close the
+// journal is deleted. If the process dies in between, recoverDatasetBag() restores the bag as it
+// was before that append. A new bag is first written as "<bag>.tmp" and renamed. So a kill at any
+// moment leaves a readable bag with every pair whose write() returned.
+
+#include "thermal_lidar_calibration/core/calibration_pair.hpp"
+#include "thermal_lidar_calibration/core/camera_model.hpp"
+
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/PointCloud2.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace thermal_lidar_calibration {
+namespace ros_io {
+
+// Topic names inside a dataset bag (the INTERFACE defaults with a leading '/').
+struct DatasetBagTopics {
+  static constexpr const char* kImage = "/thermal/image_raw";
+  static constexpr const char* kMask = "/thermal/human_mask";
+  static constexpr const char* kClusters = "/lidar/human_clusters";
+  static constexpr const char* kCameraInfo = "/thermal/camera_info";
+};
+
+class DatasetBagWriter {
+ public:
+  // `append`: continue an existing bag (call recoverDatasetBag first); otherwise an existing file
+  // at `path` is kept as "<path>.previous" and a new bag starts with the first pair.
+  DatasetBagWriter(std::string path, bool append);
+
+  // Appends one pair (all four messages stamped with the image's time). Returns when the pair is
+  // on disk. Throws std::runtime_error naming the path and the reason.
+  void write(const sensor_msgs::Image& image, const sensor_msgs::Image& mask,
+             const sensor_msgs::PointCloud2& clusters, const sensor_msgs::CameraInfo& camera_info);
+  // Deletes the bag (and any journal); the next write() starts a new one.
+  void clear();
+
+  const std::string& path() const { return path_; }
+  std::size_t pairsWritten() const { return pairs_written_; }
+
+ private:
+  void appendWithJournal(const sensor_msgs::Image& image, const sensor_msgs::Image& mask,
+                         const sensor_msgs::PointCloud2& clusters,
+                         const sensor_msgs::CameraInfo& camera_info);
+  std::string path_;
+  bool exists_ = false;
+  std::size_t pairs_written_ = 0;
+};
+
+// If "<path>.journal" exists (the process died during an append), restores the bag from it.
+// Returns true if a restore happened. Throws std::runtime_error if the journal is unusable.
+bool recoverDatasetBag(const std::string& path);
+
+struct DatasetBagContents {
+  std::vector<CalibrationPair> pairs;   // masks binarised, people counted
+  std::optional<CameraModel> camera;    // from the last camera_info in the bag
+  std::string camera_frame, lidar_frame;
+  std::vector<std::string> errors;      // pairs that could not be decoded (skipped)
+};
+// Reads a dataset bag written by DatasetBagWriter (recovering it first). Throws
+// std::runtime_error if the bag cannot be opened.
+DatasetBagContents readDatasetBag(const std::string& path);
+
+}  // namespace ros_io
+}  // namespace thermal_lidar_calibration

@@ -1,0 +1,14 @@
+// calibration_node: see include/thermal_lidar_calibration/ros/calibration_node.hpp and README.md.
+#include "thermal_lidar_calibration/ros/calibration_node.hpp"
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "calibration_node");
+  try {
+    thermal_lidar_calibration::ros_io::CalibrationNode node(ros::NodeHandle("~"));
+    ros::spin();
+  } catch (const std::exception& e) {
+    ROS_FATAL("calibration_node cannot start: %s", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Test helper launched by the node rostests: generates a bag with make_synthetic_bag into a fresh
+# WORK_DIR (synthetic.bag + truth.yaml), then plays it with rosbag play --clock.
+# Usage: play_synthetic_bag.sh WORK_DIR RATE [generator options...]
+# (roslaunch's own __name:=/__log:= arguments are ignored.)
+set -euo pipefail
+export PATH=/usr/bin:/bin:$PATH
+work_dir="$1"; rate="$2"; shift 2
+gen_args=()
+for a in "$@"; do
+  case "$a" in __*) ;; *) gen_args+=("$a") ;; esac
+done
+rm -rf "$work_dir"
+mkdir -p "$work_dir"
+rosrun thermal_lidar_calibration make_synthetic_bag --output "$work_dir/synthetic.bag" --truth "$work_dir/truth.yaml" "${gen_args[@]}" \
+  > "$work_dir/generator.log" 2>&1 || { cat "$work_dir/generator.log" >&2; exit 1; }
+exec rosbag play --clock -q -r "$rate" "$work_dir/synthetic.bag"

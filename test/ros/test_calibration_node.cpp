@@ -1,0 +1,319 @@
+// rostests of calibration_node (run by the .test files beside this one).
+//
+// NodeBag.*:         a generated bag is played; the node must reach done, publish the result on
+//                    /tf_static within the stated tolerance of the generator's truth, write the
+//                    result YAML, and (with ~existing_parent) leave the camera frame's parent alone.
+// NodeBadMessages.*: this test publishes broken messages itself; the node must stay up, count them
+//                    on ~status and say on /rosout what was wrong with each kind.
+
+#include "thermal_lidar_calibration/core/extrinsic.hpp"
+#include "thermal_lidar_calibration/ros/result_file.hpp"
+
+#include <thermal_lidar_calibration/CalibrationStatus.h>
+
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <rosgraph_msgs/Log.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <sensor_msgs/point_cloud2_iterator.h>
+#include <std_srvs/Trigger.h>
+#include <tf2_msgs/TFMessage.h>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+using thermal_lidar_calibration::CalibrationStatus;
+using thermal_lidar_calibration::Extrinsic;
+
+namespace {
+
+struct Observed {
+  std::mutex mutex;
+  std::vector<std::string> states;  // distinct consecutive state names
+  CalibrationStatus last_status;
+  int status_messages = 0;
+  // child frame -> (publisher, transform) for every /tf_static transform seen
+  std::multimap<std::string, std::pair<std::string, geometry_msgs::TransformStamped>> tf_static;
+  std::vector<std::string> node_warnings;  // /rosout WARN+ from calibration_node
+};
+
+Observed g_observed;
+
+void onStatus(const CalibrationStatus::ConstPtr& msg) {
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  if (g_observed.states.empty() || g_observed.states.back() != msg->state_name) {
+    g_observed.states.push_back(msg->state_name);
+  }
+  g_observed.last_status = *msg;
+  ++g_observed.status_messages;
+}
+
+void onTfStatic(const ros::MessageEvent<tf2_msgs::TFMessage const>& event) {
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  for (const auto& t : event.getMessage()->transforms) {
+    g_observed.tf_static.emplace(t.child_frame_id, std::make_pair(event.getPublisherName(), t));
+  }
+}
+
+void onRosout(const rosgraph_msgs::Log::ConstPtr& msg) {
+  if (msg->level < rosgraph_msgs::Log::WARN) return;
+  if (msg->name.find("calibration_node") == std::string::npos) return;
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  g_observed.node_warnings.push_back(msg->msg);
+}
+
+template <typename Predicate>
+bool waitFor(double timeout_s, Predicate predicate) {
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
+  while (ros::ok() && ros::WallTime::now() < end) {
+    {
+      std::lock_guard<std::mutex> lock(g_observed.mutex);
+      if (predicate()) return true;
+    }
+    ros::WallDuration(0.05).sleep();
+  }
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  return predicate();
+}
+
+std::string joined(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : " -> ") + x;
+  return s;
+}
+
+Eigen::Isometry3d toIsometry(const geometry_msgs::Transform& t) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::Quaterniond(t.rotation.w, t.rotation.x, t.rotation.y, t.rotation.z)
+                   .normalized()
+                   .toRotationMatrix();
+  T.translation() = Eigen::Vector3d(t.translation.x, t.translation.y, t.translation.z);
+  return T;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+TEST(NodeBag, ReachesDonePublishesTruthAndWritesYaml) {
+  ros::NodeHandle pnh("~");
+  const std::string truth_file = pnh.param<std::string>("truth_file", "");
+  const std::string result_file = pnh.param<std::string>("result_file", "");
+  const std::string lidar_frame = pnh.param<std::string>("lidar_frame", "velodyne");
+  const std::string camera_frame = pnh.param<std::string>("camera_frame", "thermal_optical");
+  const std::string expected_child = pnh.param<std::string>("expected_child", camera_frame);
+  const std::string existing_parent = pnh.param<std::string>("existing_parent", "");
+  const double rot_tol_deg = pnh.param("rotation_tolerance_deg", 1.0);
+  const double trans_tol_m = pnh.param("translation_tolerance_m", 0.05);
+  const double max_loss_px = pnh.param("max_loss_px", 1.0);
+  const double timeout_s = pnh.param("timeout_s", 150.0);
+
+  const std::string node = "calibration_node";
+  const auto has_result = [&] {
+    for (auto range = g_observed.tf_static.equal_range(expected_child); range.first != range.second;
+         ++range.first) {
+      if (range.first->second.first.find(node) != std::string::npos) return true;
+    }
+    return false;
+  };
+  ASSERT_TRUE(waitFor(timeout_s, [&] {
+    return !g_observed.states.empty() && g_observed.states.back() == "done" && has_result();
+  })) << "states seen: " << joined(g_observed.states) << "; status: " << g_observed.last_status;
+
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  // collecting -> optimizing -> done, in that order.
+  const auto& s = g_observed.states;
+  const auto collecting = std::find(s.begin(), s.end(), "collecting");
+  const auto optimizing = std::find(collecting, s.end(), "optimizing");
+  const auto done = std::find(optimizing, s.end(), "done");
+  EXPECT_TRUE(collecting != s.end() && optimizing != s.end() && done != s.end()) << joined(s);
+  EXPECT_EQ(g_observed.last_status.child_frame, expected_child);
+  EXPECT_GE(g_observed.last_status.pairs_kept, g_observed.last_status.pairs_required);
+
+  // The transform: T_lidar_camera on /tf_static, compared with the generator's truth.
+  geometry_msgs::TransformStamped published;
+  for (auto range = g_observed.tf_static.equal_range(expected_child); range.first != range.second;
+       ++range.first) {
+    if (range.first->second.first.find(node) != std::string::npos) published = range.first->second.second;
+  }
+  EXPECT_EQ(published.header.frame_id, lidar_frame);
+  const Eigen::Isometry3d T_camera_lidar = toIsometry(published.transform).inverse();
+  const Extrinsic truth = thermal_lidar_calibration::ros_io::readExtrinsicFile(truth_file);
+  const Extrinsic estimate =
+      Extrinsic::fromRotationMatrix(T_camera_lidar.linear(), T_camera_lidar.translation());
+  const double rot_err_deg = thermal_lidar_calibration::rotationErrorRad(estimate, truth) * 180.0 / M_PI;
+  const double trans_err_m = thermal_lidar_calibration::translationErrorM(estimate, truth);
+  std::cout << "[ node ] rotation error " << rot_err_deg << " deg, translation error "
+            << trans_err_m << " m, loss " << g_observed.last_status.final_loss << " px\n";
+  EXPECT_LT(rot_err_deg, rot_tol_deg);
+  EXPECT_LT(trans_err_m, trans_tol_m);
+  EXPECT_LT(g_observed.last_status.final_loss, max_loss_px);
+
+  // The YAML holds the same extrinsic.
+  const Extrinsic from_file = thermal_lidar_calibration::ros_io::readExtrinsicFile(result_file);
+  EXPECT_LT(thermal_lidar_calibration::rotationErrorRad(from_file, estimate), 1e-6);
+  EXPECT_LT(thermal_lidar_calibration::translationErrorM(from_file, estimate), 1e-6);
+
+  // The node published nothing but its result on /tf_static; existing parents are untouched.
+  for (const auto& entry : g_observed.tf_static) {
+    if (entry.second.first.find(node) == std::string::npos) continue;
+    EXPECT_EQ(entry.first, expected_child) << "the node published an extra transform";
+  }
+  if (!existing_parent.empty()) {
+    EXPECT_NE(expected_child, camera_frame);
+    int parents = 0;
+    for (auto range = g_observed.tf_static.equal_range(camera_frame); range.first != range.second;
+         ++range.first) {
+      ++parents;
+      EXPECT_EQ(range.first->second.second.header.frame_id, existing_parent);
+      EXPECT_EQ(range.first->second.first.find(node), std::string::npos)
+          << "the node gave " << camera_frame << " a second parent";
+    }
+    EXPECT_GE(parents, 1) << "the bag's " << existing_parent << " -> " << camera_frame
+                          << " transform never arrived";
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+namespace {
+
+constexpr int kWidth = 160, kHeight = 128;
+
+sensor_msgs::Image monoImage(const ros::Time& stamp, int width, int height,
+                             const std::string& encoding) {
+  sensor_msgs::Image img;
+  img.header.stamp = stamp;
+  img.header.frame_id = "thermal_optical";
+  img.width = width;
+  img.height = height;
+  img.encoding = encoding;
+  const int channels = encoding == "rgb8" ? 3 : 1;
+  img.step = static_cast<std::uint32_t>(width * channels);
+  img.data.assign(static_cast<std::size_t>(img.step) * height, 0);
+  return img;
+}
+
+sensor_msgs::PointCloud2 cloud(const ros::Time& stamp, bool with_label, int nan_points) {
+  sensor_msgs::PointCloud2 c;
+  c.header.stamp = stamp;
+  c.header.frame_id = "velodyne";
+  sensor_msgs::PointCloud2Modifier modifier(c);
+  if (with_label) {
+    modifier.setPointCloud2Fields(4, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1,
+                                  sensor_msgs::PointField::FLOAT32, "z", 1,
+                                  sensor_msgs::PointField::FLOAT32, "label", 1,
+                                  sensor_msgs::PointField::INT32);
+  } else {
+    modifier.setPointCloud2Fields(3, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1,
+                                  sensor_msgs::PointField::FLOAT32, "z", 1,
+                                  sensor_msgs::PointField::FLOAT32);
+  }
+  const int n = 10;
+  modifier.resize(n);
+  sensor_msgs::PointCloud2Iterator<float> x(c, "x"), y(c, "y"), z(c, "z");
+  for (int i = 0; i < n; ++i, ++x, ++y, ++z) {
+    const bool nan = i < nan_points;
+    *x = nan ? std::numeric_limits<float>::quiet_NaN() : 5.0f;
+    *y = 0.1f * i;
+    *z = 0.0f;
+  }
+  if (with_label) {
+    sensor_msgs::PointCloud2Iterator<std::int32_t> label(c, "label");
+    for (int i = 0; i < n; ++i, ++label) *label = 1;
+  }
+  return c;
+}
+
+}  // namespace
+
+TEST(NodeBadMessages, StaysUpCountsAndReportsEachFault) {
+  ros::NodeHandle nh;
+  auto info_pub = nh.advertise<sensor_msgs::CameraInfo>("thermal/camera_info", 1, true);
+  auto image_pub = nh.advertise<sensor_msgs::Image>("thermal/image_raw", 10);
+  auto mask_pub = nh.advertise<sensor_msgs::Image>("thermal/human_mask", 10);
+  auto cloud_pub = nh.advertise<sensor_msgs::PointCloud2>("lidar/human_clusters", 10);
+  sensor_msgs::CameraInfo info;
+  info.header.frame_id = "thermal_optical";
+  info.width = kWidth;
+  info.height = kHeight;
+  info.distortion_model = "plumb_bob";
+  info.D = {0, 0, 0, 0, 0};
+  info.K = {150, 0, 80, 0, 150, 64, 0, 0, 1};
+  info.P = {150, 0, 80, 0, 0, 150, 64, 0, 0, 0, 1, 0};
+  info_pub.publish(info);
+
+  ASSERT_TRUE(waitFor(20.0, [] { return g_observed.status_messages > 0; }))
+      << "no ~status from the node";
+  ASSERT_TRUE(waitFor(10.0, [&] {
+    return image_pub.getNumSubscribers() > 0 && mask_pub.getNumSubscribers() > 0 &&
+           cloud_pub.getNumSubscribers() > 0;
+  }));
+  ros::WallDuration(0.5).sleep();
+
+  // Each 5 frames: wrong image encoding, cloud without label, mask of the wrong size, NaN points,
+  // and a valid frame with nobody in it. Identical stamps per frame, 20 Hz.
+  const int kRounds = 4;
+  for (int i = 0; i < kRounds * 5 + 10 && ros::ok(); ++i) {
+    const ros::Time stamp = ros::Time::now();
+    const int kind = i < kRounds * 5 ? i % 5 : 4;
+    image_pub.publish(monoImage(stamp, kWidth, kHeight, kind == 0 ? "rgb8" : "mono8"));
+    mask_pub.publish(kind == 2 ? monoImage(stamp, kWidth / 2, kHeight / 2, "mono8")
+                               : monoImage(stamp, kWidth, kHeight, "mono8"));
+    cloud_pub.publish(cloud(stamp, kind != 1, kind == 3 ? 4 : 0));
+    ros::WallDuration(0.05).sleep();
+  }
+
+  EXPECT_TRUE(waitFor(10.0, [&] {
+    return g_observed.last_status.rejected_bad_message >= 3u * (kRounds - 1) &&
+           g_observed.last_status.nonfinite_points_dropped >= 4u;
+  })) << g_observed.last_status;
+
+  // Still up: the services answer and ~status keeps coming.
+  std_srvs::Trigger trigger;
+  ASSERT_TRUE(ros::service::waitForService("calibration_node/save", 5000));
+  EXPECT_TRUE(ros::service::call("calibration_node/save", trigger));
+  EXPECT_FALSE(trigger.response.success);  // no result yet, but it answered
+  const int before = g_observed.status_messages;
+  EXPECT_TRUE(waitFor(5.0, [&] { return g_observed.status_messages > before + 1; }));
+  ASSERT_TRUE(ros::service::call("calibration_node/calibrate", trigger));
+  EXPECT_FALSE(trigger.response.success);
+  EXPECT_NE(trigger.response.message.find("min_pairs_to_calibrate"), std::string::npos)
+      << trigger.response.message;
+
+  // Each kind of fault is said on /rosout, naming the topic.
+  const auto said = [](const std::string& a, const std::string& b) {
+    return [a, b] {
+      for (const auto& w : g_observed.node_warnings) {
+        if (w.find(a) != std::string::npos && w.find(b) != std::string::npos) return true;
+      }
+      return false;
+    };
+  };
+  EXPECT_TRUE(waitFor(5.0, said("/thermal/image_raw", "rgb8"))) << joined(g_observed.node_warnings);
+  EXPECT_TRUE(waitFor(1.0, said("/lidar/human_clusters", "label"))) << joined(g_observed.node_warnings);
+  EXPECT_TRUE(waitFor(1.0, said("/thermal/human_mask", "80x64"))) << joined(g_observed.node_warnings);
+  EXPECT_TRUE(waitFor(1.0, said("/lidar/human_clusters", "NaN"))) << joined(g_observed.node_warnings);
+}
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "calibration_node_test");
+  ros::NodeHandle nh;
+  ros::Subscriber status_sub = nh.subscribe("calibration_node/status", 100, onStatus);
+  ros::Subscriber tf_sub = nh.subscribe("/tf_static", 100, onTfStatic);
+  ros::Subscriber rosout_sub = nh.subscribe("/rosout", 1000, onRosout);
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  const int result = RUN_ALL_TESTS();
+  spinner.stop();
+  ros::shutdown();
+  return result;
+}

@@ -1,0 +1,133 @@
+#!/usr/bin/env python3
+"""Kill and resume: calibration_node is killed (SIGKILL) half way through a generated bag,
+restarted with ~resume:=true, and must finish with the pairs it had plus new ones.
+
+Runs under rostest (node_resume.test) with params ~work_dir and ~config_files.
+"""
+import os
+import shutil
+import signal
+import subprocess
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+import yaml
+from thermal_lidar_calibration.msg import CalibrationStatus
+
+NODE = "/calibration_node"
+PKG = "thermal_lidar_calibration"
+
+
+class Statuses:
+    def __init__(self):
+        self.lock = threading.Lock()
+        self.last = None
+        self.first_after_start = None
+
+    def reset(self):
+        with self.lock:
+            self.last = None
+            self.first_after_start = None
+
+    def callback(self, msg):
+        with self.lock:
+            self.last = msg
+            if self.first_after_start is None:
+                self.first_after_start = msg
+
+
+def wait_for(predicate, timeout_s):
+    end = time.time() + timeout_s
+    while time.time() < end and not rospy.is_shutdown():
+        if predicate():
+            return True
+        time.sleep(0.05)
+    return predicate()
+
+
+class KillAndResume(unittest.TestCase):
+    def setUp(self):
+        self.work = rospy.get_param("~work_dir")
+        shutil.rmtree(self.work, ignore_errors=True)
+        os.makedirs(self.work)
+        self.bag = os.path.join(self.work, "synthetic.bag")
+        with open(os.path.join(self.work, "generator.log"), "w") as log:
+            subprocess.run(["rosrun", PKG, "make_synthetic_bag", "--output", self.bag, "--truth",
+                            os.path.join(self.work, "truth.yaml"), "--frames", "260", "--seed", "13"],
+                           check=True, stdout=log, stderr=subprocess.STDOUT)
+        for path in rospy.get_param("~config_files").split():
+            with open(path) as f:
+                for key, value in (yaml.safe_load(f) or {}).items():
+                    rospy.set_param(NODE + "/" + key, value)
+        self.result_file = os.path.join(self.work, "result.yaml")
+        self.dataset_bag = os.path.join(self.work, "dataset.bag")
+        rospy.set_param(NODE + "/output_file", self.result_file)
+        rospy.set_param(NODE + "/dataset_bag", self.dataset_bag)
+        rospy.set_param(NODE + "/resume", False)
+        self.statuses = Statuses()
+        self.sub = rospy.Subscriber(NODE + "/status", CalibrationStatus, self.statuses.callback,
+                                    queue_size=100)
+        self.procs = []
+
+    def tearDown(self):
+        for p in self.procs:
+            if p.poll() is None:
+                p.send_signal(signal.SIGINT)
+                try:
+                    p.wait(timeout=5)
+                except subprocess.TimeoutExpired:
+                    p.kill()
+
+    def start(self, args):
+        log = open(os.path.join(self.work, "proc%d.log" % len(self.procs)), "w")
+        p = subprocess.Popen(args, stdout=log, stderr=subprocess.STDOUT)
+        self.procs.append(p)
+        return p
+
+    def start_node(self):
+        self.statuses.reset()
+        node = self.start(["rosrun", PKG, "calibration_node", "__name:=calibration_node"])
+        self.assertTrue(wait_for(lambda: self.statuses.last is not None, 20), "no ~status")
+        return node
+
+    def test_kill_half_way_then_resume(self):
+        required = rospy.get_param(NODE + "/pairs_required")
+        node = self.start_node()
+        play = self.start(["rosbag", "play", "-q", self.bag])
+        half = required // 2
+        self.assertTrue(wait_for(lambda: self.statuses.last.pairs_kept >= half, 90),
+                        "never kept %d pairs: %s" % (half, self.statuses.last))
+        kept_before = self.statuses.last.pairs_kept
+        os.kill(node.pid, signal.SIGKILL)  # no chance to clean up
+        node.wait()
+        play.send_signal(signal.SIGINT)
+        play.wait()
+        self.assertLess(kept_before, required)
+        self.assertTrue(os.path.exists(self.dataset_bag))
+        self.assertFalse(os.path.exists(self.result_file))
+
+        rospy.set_param(NODE + "/resume", True)
+        self.start_node()
+        resumed = self.statuses.first_after_start.pairs_resumed
+        self.assertGreaterEqual(resumed, kept_before, "pairs lost by the kill")
+        self.assertLess(resumed, required)
+        # Replay the whole bag: frames already in the dataset are not added twice.
+        self.start(["rosbag", "play", "-q", self.bag])
+        self.assertTrue(wait_for(lambda: self.statuses.last.state_name == "done", 150),
+                        "not done: %s" % self.statuses.last)
+        with open(self.result_file) as f:
+            result = yaml.safe_load(f)
+        self.assertEqual(result["pairs_collected"], required)
+        stamps = [p["stamp"] for p in result["pairs"]]
+        self.assertEqual(len(stamps), len(set(stamps)), "a pair was added twice")
+        self.assertEqual(self.statuses.last.pairs_resumed, resumed)
+        rospy.loginfo("resumed %d pairs (>= %d seen before the kill), finished with %d",
+                      resumed, kept_before, result["pairs_collected"])
+
+
+if __name__ == "__main__":
+    rospy.init_node("test_node_resume")
+    rostest.rosrun("thermal_lidar_calibration", "node_resume", KillAndResume)
