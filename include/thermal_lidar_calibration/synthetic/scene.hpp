@@ -23,7 +23,7 @@ struct SceneConfig {
   int people = 0;                    // total people; 0 = about 1.8 per group (automatic)
   double group_spacing_m = 62.0;     // along the path between consecutive groups
   double first_group_m = 28.0;       // arc length of the first group ahead of the start
-  double min_lateral_m = 4.0;        // closest a person stands to the path centre line
+  double min_lateral_m = 1.5;        // closest a person stands to the path centre line (near people, seen at 4-10 m, constrain the translation)
   double max_lateral_m = 7.0;        // farthest (some are then outside the camera's view)
   double min_height_m = 1.55;
   double max_height_m = 1.95;
