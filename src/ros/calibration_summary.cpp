@@ -46,7 +46,8 @@ std::string formatCalibrationSummary(const SummaryInput& in) {
     << in.algorithm_text << ")\n";
   s << "  rotation_vector  " << fmt("[%.6f, %.6f, %.6f] rad", e.rotation_vector.x(),
                                     e.rotation_vector.y(), e.rotation_vector.z())
-    << "  (angle " << fmt("%.3f", e.rotation_vector.norm() * kDeg, 0, 0) << " deg)\n";
+    << "  (rotation angle " << fmt("%.3f", Eigen::AngleAxisd(R).angle() * kDeg, 0, 0)
+    << " deg)\n";
   for (int row = 0; row < 3; ++row) {
     s << (row == 0 ? "  rotation_matrix  " : "                   ")
       << fmt("[%9.6f %9.6f %9.6f]", R(row, 0), R(row, 1), R(row, 2)) << "\n";
