@@ -4,11 +4,36 @@
 #include "thermal_lidar_calibration/core/local_refinement.hpp"
 #include "thermal_lidar_calibration/core/outlier_rejection.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <numeric>
 #include <stdexcept>
 
 namespace thermal_lidar_calibration {
+namespace {
+
+// Pairs whose Eq. (1) loss is within the threshold; if fewer than half pass (the estimate is
+// still far off), the better half, so the next refinement has enough pairs to move.
+std::vector<std::size_t> selectInliers(const LossEvaluator& loss, const Extrinsic& estimate,
+                                       double threshold_px) {
+  const std::size_t n = loss.pairCount();
+  std::vector<std::pair<double, std::size_t>> scored(n);
+  for (std::size_t i = 0; i < n; ++i) scored[i] = {loss.pairLoss(i, estimate), i};
+  std::vector<std::size_t> inliers;
+  for (const auto& [value, i] : scored) {
+    if (value <= threshold_px) inliers.push_back(i);
+  }
+  if (inliers.size() * 2 < n) {
+    std::stable_sort(scored.begin(), scored.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    inliers.clear();
+    for (std::size_t k = 0; k < (n + 1) / 2; ++k) inliers.push_back(scored[k].second);
+    std::sort(inliers.begin(), inliers.end());
+  }
+  return inliers;
+}
+
+}  // namespace
 
 CalibrationResult calibrate(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
                             const CalibrationConfig& config, const ProgressCallback& progress) {
@@ -73,14 +98,30 @@ CalibrationResult calibrate(const CameraModel& camera, const std::vector<Calibra
   if (config.refine.mode == RefineMode::kLocal && !result.stopped) {
     const LossEvaluator bilinear = nearest.withPixelRule(PixelRule::kBilinear);
     const LocalRefinement refinement(bilinear, config.refine, config.num_threads);
-    evaluations_before_stage = result.evaluations;
-    const RefineOutcome refined = refinement.run(
-        fit.best, used, [&](int iteration, double loss, const Extrinsic& e, std::uint64_t evals) {
-          return report("refine", iteration, 0, loss, e, evals);
-        });
-    result.extrinsic = refined.best;
-    result.evaluations += refined.evaluations;
-    result.stopped = refined.stopped;
+    // Algorithm 2 can keep a mismatched pair (equal counts, different people) when neither of
+    // its subset fits is accepted; one such pair pulls the optimum by decimetres. So the
+    // refinement alternates: refine on the current inliers, then re-select the inliers among
+    // ALL collected pairs with the paper's own test (Eq. 1 <= threshold_sample), keeping at least
+    // the better half, until the set no longer changes.
+    constexpr int kMaxInlierRounds = 5;
+    for (int round = 1; round <= kMaxInlierRounds; ++round) {
+      evaluations_before_stage = result.evaluations;
+      const RefineOutcome refined = refinement.run(
+          result.extrinsic, used,
+          [&](int iteration, double loss, const Extrinsic& e, std::uint64_t evals) {
+            return report("refine", iteration, 0, loss, e, evals);
+          });
+      result.extrinsic = refined.best;
+      result.evaluations += refined.evaluations;
+      result.stopped = refined.stopped;
+      if (result.stopped) break;
+      const std::vector<std::size_t> reselected =
+          selectInliers(nearest, result.extrinsic, config.outlier.threshold_px);
+      if (reselected == used) break;
+      used = reselected;
+    }
+    result.inliers.assign(pairs.size(), false);
+    for (std::size_t i : used) result.inliers[i] = true;
   }
 
   result.pairs_used = used.size();

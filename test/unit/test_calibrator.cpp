@@ -61,6 +61,26 @@ TEST(Calibrate, RefinementLowersTheSubPixelLossAndLandsCloseToTheTruth) {
   EXPECT_EQ(r.pairs_used, data.size());
 }
 
+TEST(Calibrate, RefinementReselectsInliersAndDropsMismatchedPairs) {
+  auto data = pairs(30, 12);
+  const std::vector<int> swapped{2, 11, 19, 27};
+  std::swap(data[2].mask, data[11].mask);
+  std::swap(data[19].mask, data[27].mask);
+  CalibrationConfig config;
+  config.algorithm = Algorithm::kPlain;  // uses every pair: the mismatched ones pull the fit
+  config.evolution.population_size = 200;
+  config.evolution.max_iterations = 150;
+  config.seed = 6;
+  const CalibrationResult r = calibrate(fieldsafeCamera(), data, config);
+  for (int i : swapped) EXPECT_FALSE(r.inliers[i]) << "pair " << i;
+  EXPECT_GE(r.pairs_used, 24u);
+  EXPECT_LT(rotationErrorRad(r.extrinsic, fieldsafeTruth()), 0.2 * kDeg);
+  EXPECT_LT(translationErrorM(r.extrinsic, fieldsafeTruth()), 0.03);
+  config.refine.mode = RefineMode::kNone;  // the paper's Algorithm 1 keeps them all
+  const CalibrationResult plain = calibrate(fieldsafeCamera(), data, config);
+  EXPECT_EQ(plain.pairs_used, data.size());
+}
+
 TEST(Calibrate, ReportsProgressAndStopsWhenAsked) {
   const auto data = pairs(20, 9);
   CalibrationConfig config;

@@ -32,7 +32,9 @@ struct CalibrationResult {
   Extrinsic evolution_extrinsic;  // result of Algorithm 1/2 before refinement
   double evolution_loss = 0.0;    // its Eq. (3), nearest rule, on the pairs used
   std::vector<double> pair_losses;  // Eq. (1), nearest rule, every input pair at `extrinsic`
-  std::vector<bool> inliers;        // Algorithm 2's isInlier (all true for Algorithm 1)
+  // The pairs used: Algorithm 2's isInlier (all true for Algorithm 1); with refine = local,
+  // re-selected after refinement among all pairs by Eq. (1) <= threshold_sample_px.
+  std::vector<bool> inliers;
   std::size_t pairs_used = 0;
   std::size_t pairs_collected = 0;
   int outlier_fits_accepted = 0;    // Algorithm 2 fits with ratio_inliers >= ratio_solution
