@@ -1,9 +1,7 @@
 #!/usr/bin/env bash
 # Smoke test of the make_synthetic_bag CLI (no roscore): exit codes, topics, frame ids, truth keys.
 # Usage: test/cli_synthetic/test_make_synthetic_bag.sh [PATH/TO/make_synthetic_bag]
-# Not registered in CMake (test/CMakeLists.txt belongs to the CLI-test work); to register:
-#   add_test(NAME make_synthetic_bag_smoke COMMAND
-#            ${PROJECT_SOURCE_DIR}/test/cli_synthetic/test_make_synthetic_bag.sh $<TARGET_FILE:make_synthetic_bag>)
+# Registered in test/CMakeLists.txt (through run_as_junit.sh, so catkin counts it).
 set -uo pipefail
 export PATH=/usr/bin:/bin:$PATH
 exe="${1:-make_synthetic_bag}"
