@@ -124,6 +124,11 @@ CalibrationResult calibrate(const CameraModel& camera, const std::vector<Calibra
     for (std::size_t i : used) result.inliers[i] = true;
   }
 
+  // The search explores rotation vectors up to |r| = sqrt(3) * 3.5 rad; report the same
+  // rotation with its angle in [0, pi] so files and logs read naturally.
+  result.extrinsic.rotation_vector = matrixToRodrigues(result.extrinsic.rotationMatrix());
+  result.evolution_extrinsic.rotation_vector =
+      matrixToRodrigues(result.evolution_extrinsic.rotationMatrix());
   result.pairs_used = used.size();
   result.loss = nearest.loss(result.extrinsic, used);
   result.loss_bilinear = nearest.withPixelRule(PixelRule::kBilinear).loss(result.extrinsic, used);

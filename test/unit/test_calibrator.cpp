@@ -59,6 +59,7 @@ TEST(Calibrate, RefinementLowersTheSubPixelLossAndLandsCloseToTheTruth) {
   EXPECT_LT(translationErrorM(r.extrinsic, fieldsafeTruth()), 0.03);
   EXPECT_EQ(r.pair_losses.size(), data.size());
   EXPECT_EQ(r.pairs_used, data.size());
+  EXPECT_LE(r.extrinsic.rotation_vector.norm(), M_PI + 1e-9);  // canonical rotation vector
 }
 
 TEST(Calibrate, RefinementReselectsInliersAndDropsMismatchedPairs) {
