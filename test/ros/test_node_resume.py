@@ -56,7 +56,7 @@ class KillAndResume(unittest.TestCase):
         self.bag = os.path.join(self.work, "synthetic.bag")
         with open(os.path.join(self.work, "generator.log"), "w") as log:
             subprocess.run(["rosrun", PKG, "make_synthetic_bag", "--output", self.bag, "--truth",
-                            os.path.join(self.work, "truth.yaml"), "--frames", "260", "--seed", "13"],
+                            os.path.join(self.work, "truth.yaml"), "--frames", "300", "--seed", "11"],
                            check=True, stdout=log, stderr=subprocess.STDOUT)
         for path in rospy.get_param("~config_files").split():
             with open(path) as f:
