@@ -1,6 +1,7 @@
 // calibrate_bag: parameters -> bag -> shared ingest path -> calibrate() -> result file + summary.
 
 #include "thermal_lidar_calibration/ros/bag_calibration.hpp"
+#include "thermal_lidar_calibration/ros/dataset_bag.hpp"
 
 #include "thermal_lidar_calibration/core/loss.hpp"
 #include "thermal_lidar_calibration/ros/bag_dataset.hpp"
@@ -105,7 +106,7 @@ int runCalibrateBag(const CalibrateBagOptions& options) {
   g_interrupted = false;
   std::signal(SIGINT, onSigint);
 
-  const CoreParameters params = loadParameters(options);
+  CoreParameters params = loadParameters(options);
   std::optional<Extrinsic> truth;
   if (!options.truth.empty()) truth = readExtrinsicFile(options.truth);
 
@@ -115,6 +116,18 @@ int runCalibrateBag(const CalibrateBagOptions& options) {
   openBag(bag, options.bag);
   const std::vector<BagTopicInfo> bag_topics = listBagTopics(bag);
   checkBagTopics(bag_topics, topics, options.bag);
+  // A calibration_node dataset bag holds only frames the node already kept: the skip rule
+  // applied again would drop three of every four.
+  for (const BagTopicInfo& t : bag_topics) {
+    if (t.topic == DatasetBagTopics::kMarker && params.gate.skip_frames != 0) {
+      params.gate.skip_frames = 0;
+      if (!options.quiet) {
+        std::fprintf(stderr,
+                     "calibrate_bag: note: a calibration_node dataset bag (already gated): "
+                     "skip rule off\n");
+      }
+    }
+  }
   const CameraModel camera = options.camera_info_file.empty()
                                  ? cameraModelFromBag(bag, topics.camera_info, bag_topics)
                                  : loadCameraInfoFile(options.camera_info_file);

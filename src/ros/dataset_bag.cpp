@@ -7,6 +7,7 @@
 
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
+#include <std_msgs/String.h>
 
 #include <unistd.h>
 
@@ -91,6 +92,9 @@ void writeMessages(rosbag::Bag& bag, const sensor_msgs::Image& image,
   bag.write(DatasetBagTopics::kImage, time, image);
   bag.write(DatasetBagTopics::kMask, time, mask);
   bag.write(DatasetBagTopics::kClusters, time, clusters);
+  std_msgs::String marker;
+  marker.data = "pair kept by calibration_node (already gated)";
+  bag.write(DatasetBagTopics::kMarker, time, marker);
 }
 
 }  // namespace

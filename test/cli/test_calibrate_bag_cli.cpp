@@ -3,10 +3,13 @@
 
 #include "bag_fixture.hpp"
 
+#include "thermal_lidar_calibration/ros/dataset_bag.hpp"
 #include "thermal_lidar_calibration/ros/result_file.hpp"
 
 #include <gtest/gtest.h>
 #include <ros/time.h>
+#include <rosbag/bag.h>
+#include <std_msgs/String.h>
 #include <yaml-cpp/yaml.h>
 
 #include <sys/wait.h>
@@ -298,4 +301,26 @@ int main(int argc, char** argv) {
   ros::Time::init();
   ::testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
+}
+
+TEST_F(CalibrateBagCli, DatasetBagFromTheNodeIsNotSkippedAgain) {
+  // A calibration_node dataset bag: every frame was already kept by the node's gate.
+  BagSpec spec;
+  const std::string path = bag(spec, "dataset.bag");
+  {
+    rosbag::Bag b(path, rosbag::bagmode::Append);
+    std_msgs::String marker;
+    marker.data = "pair kept by calibration_node (already gated)";
+    for (int f = 0; f < spec.frames; ++f) {
+      b.write(thermal_lidar_calibration::ros_io::DatasetBagTopics::kMarker,
+              ros::Time(1000.0 + 0.1 * f), marker);
+    }
+  }
+  // The default skip rule (3) is in force: without the marker 3 of 4 frames would be skipped.
+  std::ofstream(dir_ + "/skip.yaml") << "population_size: 150\nmax_iterations: 80\nseed: 3\n";
+  const RunResult r = run("--bag '" + path + "' --config '" + dir_ + "/skip.yaml' --output '" +
+                          dir_ + "/out.yaml'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("dataset bag (already gated): skip rule off"), std::string::npos) << r.err;
+  EXPECT_EQ(YAML::LoadFile(dir_ + "/out.yaml")["pairs_collected"].as<int>(), spec.frames);
 }

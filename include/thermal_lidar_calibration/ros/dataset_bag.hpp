@@ -31,6 +31,9 @@ struct DatasetBagTopics {
   static constexpr const char* kMask = "/thermal/human_mask";
   static constexpr const char* kClusters = "/lidar/human_clusters";
   static constexpr const char* kCameraInfo = "/thermal/camera_info";
+  // std_msgs/String written with each pair: tells calibrate_bag that these frames were already
+  // gated by the node, so it must not apply the skip rule a second time.
+  static constexpr const char* kMarker = "/thermal_lidar_calibration/dataset_pair";
 };
 
 class DatasetBagWriter {
