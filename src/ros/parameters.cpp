@@ -2,6 +2,7 @@
 // defaults from the core structs, per-key type and range checks, then the core validate().
 
 #include "thermal_lidar_calibration/ros/parameters.hpp"
+#include "thermal_lidar_calibration/ros/parameter_readers.hpp"
 #include "thermal_lidar_calibration/ros/unknown_parameters.hpp"
 
 #include <yaml-cpp/yaml.h>
@@ -16,52 +17,6 @@
 namespace thermal_lidar_calibration {
 namespace ros_io {
 namespace {
-
-std::string formatDouble(double v) {
-  std::ostringstream s;
-  s.precision(12);
-  s << v;
-  return s.str();
-}
-
-// The value as the user wrote it, for error messages.
-std::string rawValue(const ParameterSource& source, const std::string& key) {
-  if (auto i = source.getInt(key)) return std::to_string(*i);
-  if (auto d = source.getDouble(key)) return formatDouble(*d);
-  if (auto b = source.getBool(key)) return *b ? "true" : "false";
-  if (auto s = source.getString(key)) return "'" + *s + "'";
-  return "<not a scalar>";
-}
-
-[[noreturn]] void badValue(const ParameterSource& source, const std::string& key,
-                           const std::string& requirement) {
-  throw std::invalid_argument("parameter '" + key + "' = " + rawValue(source, key) + ": " +
-                              requirement);
-}
-
-template <typename Int>
-void readInt(const ParameterSource& source, const std::string& key, long long lo, long long hi,
-             Int& target) {
-  if (!source.has(key)) return;
-  const std::string requirement =
-      "must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
-  const auto v = source.getInt(key);
-  if (!v || *v < lo || *v > hi) badValue(source, key, requirement);
-  target = static_cast<Int>(*v);
-}
-
-// Range [lo, hi], or (lo, hi] when lo_open.
-void readDouble(const ParameterSource& source, const std::string& key, double lo, bool lo_open,
-                double hi, double& target) {
-  if (!source.has(key)) return;
-  const std::string requirement = "must be a number in " + std::string(lo_open ? "(" : "[") +
-                                  formatDouble(lo) + ", " + formatDouble(hi) + "]";
-  const auto v = source.getDouble(key);
-  if (!v || !std::isfinite(*v) || *v > hi || (lo_open ? *v <= lo : *v < lo)) {
-    badValue(source, key, requirement);
-  }
-  target = *v;
-}
 
 const std::vector<std::string>& coreKeys() {
   static const std::vector<std::string> keys = {
@@ -177,7 +132,7 @@ CoreParameters loadCoreParameters(const ParameterSource& source) {
   if (source.has("algorithm")) {
     const auto v = source.getInt("algorithm");
     if (!v || (*v != 1 && *v != 2)) {
-      badValue(source, "algorithm", "must be 1 (plain evolution) or 2 (with outlier rejection)");
+      throwBadParameter(source, "algorithm", "must be 1 (plain evolution) or 2 (with outlier rejection)");
     }
     algorithm = static_cast<int>(*v);
   }
@@ -185,44 +140,44 @@ CoreParameters loadCoreParameters(const ParameterSource& source) {
   if (source.has("refine")) {
     const auto v = source.getString("refine");
     if (!v || (*v != "none" && *v != "local")) {
-      badValue(source, "refine", "must be 'none' or 'local'");
+      throwBadParameter(source, "refine", "must be 'none' or 'local'");
     }
     r.mode = *v == "none" ? RefineMode::kNone : RefineMode::kLocal;
   }
-  readInt(source, "seed", 0, std::numeric_limits<long long>::max(), c.seed);
-  readInt(source, "num_threads", 0, 1024, c.num_threads);
+  readIntParameter(source, "seed", 0, std::numeric_limits<long long>::max(), c.seed);
+  readIntParameter(source, "num_threads", 0, 1024, c.num_threads);
 
-  readInt(source, "population_size", 2, 100000, e.population_size);
-  readInt(source, "max_iterations", 1, 100000, e.max_iterations);
-  readDouble(source, "rotation_interval_rad", 0.0, true, 10.0, e.rotation_interval_rad);
-  readDouble(source, "translation_interval_m", 0.0, true, 1000.0, e.translation_interval_m);
-  readDouble(source, "elite_fraction", 0.0, false, 1.0, e.elite_fraction);
-  readDouble(source, "crossover_fraction", 0.0, false, 1.0, e.crossover_fraction);
-  readInt(source, "initial_population_factor", 1, 1000, e.initial_population_factor);
-  readDouble(source, "sigma_rot_rad", 0.0, true, 3.5, e.sigma_rot_rad);
-  readDouble(source, "sigma_trans_m", 0.0, true, 100.0, e.sigma_trans_m);
-  readDouble(source, "min_inside_fraction", 0.0, false, 1.0, e.min_inside_fraction);
-  readDouble(source, "behind_camera_penalty_c1", 0.0, true, 1e6, c.behind_camera_penalty_c1);
+  readIntParameter(source, "population_size", 2, 100000, e.population_size);
+  readIntParameter(source, "max_iterations", 1, 100000, e.max_iterations);
+  readDoubleParameter(source, "rotation_interval_rad", 0.0, true, 10.0, e.rotation_interval_rad);
+  readDoubleParameter(source, "translation_interval_m", 0.0, true, 1000.0, e.translation_interval_m);
+  readDoubleParameter(source, "elite_fraction", 0.0, false, 1.0, e.elite_fraction);
+  readDoubleParameter(source, "crossover_fraction", 0.0, false, 1.0, e.crossover_fraction);
+  readIntParameter(source, "initial_population_factor", 1, 1000, e.initial_population_factor);
+  readDoubleParameter(source, "sigma_rot_rad", 0.0, true, 3.5, e.sigma_rot_rad);
+  readDoubleParameter(source, "sigma_trans_m", 0.0, true, 100.0, e.sigma_trans_m);
+  readDoubleParameter(source, "min_inside_fraction", 0.0, false, 1.0, e.min_inside_fraction);
+  readDoubleParameter(source, "behind_camera_penalty_c1", 0.0, true, 1e6, c.behind_camera_penalty_c1);
 
-  readInt(source, "min_sample_large", 1, 100000, o.min_sample_large);
-  readInt(source, "min_sample_small", 1, 100000, o.min_sample_small);
-  readInt(source, "min_sample_switch", 1, 100000, o.min_sample_switch);
-  readInt(source, "outlier_iterations", 0, 1000, o.iterations);
-  readDouble(source, "ratio_solution", 0.0, false, 1.0, o.ratio_solution);
-  readDouble(source, "threshold_sample_px", 0.0, true, 1e6, o.threshold_px);
+  readIntParameter(source, "min_sample_large", 1, 100000, o.min_sample_large);
+  readIntParameter(source, "min_sample_small", 1, 100000, o.min_sample_small);
+  readIntParameter(source, "min_sample_switch", 1, 100000, o.min_sample_switch);
+  readIntParameter(source, "outlier_iterations", 0, 1000, o.iterations);
+  readDoubleParameter(source, "ratio_solution", 0.0, false, 1.0, o.ratio_solution);
+  readDoubleParameter(source, "threshold_sample_px", 0.0, true, 1e6, o.threshold_px);
 
-  readDouble(source, "refine_initial_step_rot_rad", 0.0, true, 1.0, r.initial_step_rot_rad);
-  readDouble(source, "refine_initial_step_trans_m", 0.0, true, 10.0, r.initial_step_trans_m);
-  readDouble(source, "refine_min_step_rot_rad", 0.0, true, 1.0, r.min_step_rot_rad);
-  readDouble(source, "refine_min_step_trans_m", 0.0, true, 10.0, r.min_step_trans_m);
-  readInt(source, "refine_max_evaluations", 1, 100000000, r.max_evaluations);
+  readDoubleParameter(source, "refine_initial_step_rot_rad", 0.0, true, 1.0, r.initial_step_rot_rad);
+  readDoubleParameter(source, "refine_initial_step_trans_m", 0.0, true, 10.0, r.initial_step_trans_m);
+  readDoubleParameter(source, "refine_min_step_rot_rad", 0.0, true, 1.0, r.min_step_rot_rad);
+  readDoubleParameter(source, "refine_min_step_trans_m", 0.0, true, 10.0, r.min_step_trans_m);
+  readIntParameter(source, "refine_max_evaluations", 1, 100000000, r.max_evaluations);
 
-  readInt(source, "max_people", 1, 1000, p.gate.max_people);
-  readInt(source, "skip_frames", 0, 100000, p.gate.skip_frames);
-  readInt(source, "min_points_per_cluster", 1, 1000000, p.gate.min_points_per_cluster);
-  readDouble(source, "sync_slop", 0.0, true, 10.0, p.sync_slop_s);
-  readInt(source, "sync_queue_size", 2, 10000, p.sync_queue_size);
-  readInt(source, "pairs_required", 1, 100000, p.pairs_required);
+  readIntParameter(source, "max_people", 1, 1000, p.gate.max_people);
+  readIntParameter(source, "skip_frames", 0, 100000, p.gate.skip_frames);
+  readIntParameter(source, "min_points_per_cluster", 1, 1000000, p.gate.min_points_per_cluster);
+  readDoubleParameter(source, "sync_slop", 0.0, true, 10.0, p.sync_slop_s);
+  readIntParameter(source, "sync_queue_size", 2, 10000, p.sync_queue_size);
+  readIntParameter(source, "pairs_required", 1, 100000, p.pairs_required);
 
   // Cross-key rules (elite + crossover <= 1, min steps below initial steps, ...) are the core's.
   p.calibration.validate();
@@ -235,7 +190,7 @@ std::vector<std::pair<std::string, std::string>> describeCoreParameters(const Co
   const EvolutionConfig& e = c.evolution;
   const OutlierConfig& o = c.outlier;
   const RefineConfig& r = c.refine;
-  const auto d = formatDouble;
+  const auto d = formatParameterNumber;
   const auto i = [](long long v) { return std::to_string(v); };
   return {
       {"algorithm", c.algorithm == Algorithm::kPlain ? "1" : "2"},
