@@ -9,8 +9,11 @@ export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bash "$repo/scripts/install_deps.sh"
 ws="$(bash "$repo/scripts/build.sh" | tail -n 1)"
+# Debian's catkin profile hooks read unset variables: source them without -u.
+set +u
 # shellcheck disable=SC1091
 source "$ws/devel/setup.bash"
+set -u
 out="${TLC_DEMO_OUT:-$repo/out/demo}"
 mkdir -p "$out"
 bin="$ws/devel/lib/thermal_lidar_calibration"

@@ -7,8 +7,11 @@ export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bash "$repo/scripts/install_deps.sh"
 ws="$(bash "$repo/scripts/build.sh" --tests | tail -n 1)"
+# Debian's catkin profile hooks read unset variables: source them without -u.
+set +u
 # shellcheck disable=SC1091
 source "$ws/devel/setup.bash"
+set -u
 export ROS_HOME="${ROS_HOME:-$ws/ros_home}"
 mkdir -p "$ROS_HOME"
 cd "$ws"
