@@ -114,7 +114,8 @@ LossEvaluator::LossEvaluator(const CameraModel& camera, const std::vector<Calibr
   const auto f = [](double v) { return static_cast<float>(v); };
   impl_->lens = {f(camera_.fx), f(camera_.fy), f(camera_.cx), f(camera_.cy), f(camera_.skew),
                  f(camera_.distortion[0]), f(camera_.distortion[1]), f(camera_.distortion[2]),
-                 f(camera_.distortion[3]), f(camera_.distortion[4])};
+                 f(camera_.distortion[3]), f(camera_.distortion[4]),
+                 camera_.distortion[2] == 0.0 && camera_.distortion[3] == 0.0 && camera_.skew == 0.0};
   impl_->penalty = static_cast<float>(config_.behind_camera_penalty_c1 *
                                       std::max(camera_.width, camera_.height));
 }

@@ -126,19 +126,26 @@ TLC_AVX2 inline Avx2Projection projectAvx2(const __m256* m, const Lens& lens, __
     const __m256 poly = _mm256_fmadd_ps(r2, _mm256_set1_ps(lens.k3), _mm256_set1_ps(lens.k2));
     const __m256 radial = _mm256_fmadd_ps(
         r2, _mm256_fmadd_ps(r2, poly, _mm256_set1_ps(lens.k1)), one);
-    const __m256 xy2 = _mm256_mul_ps(_mm256_set1_ps(2.0f), _mm256_mul_ps(x, y));
-    const __m256 two = _mm256_set1_ps(2.0f);
-    const __m256 xd = _mm256_fmadd_ps(
-        x, radial, _mm256_fmadd_ps(_mm256_set1_ps(lens.p1), xy2,
-                                   _mm256_mul_ps(_mm256_set1_ps(lens.p2),
-                                                 _mm256_fmadd_ps(two, _mm256_mul_ps(x, x), r2))));
-    const __m256 yd = _mm256_fmadd_ps(
-        y, radial, _mm256_fmadd_ps(_mm256_set1_ps(lens.p2), xy2,
-                                   _mm256_mul_ps(_mm256_set1_ps(lens.p1),
-                                                 _mm256_fmadd_ps(two, _mm256_mul_ps(y, y), r2))));
-    u = _mm256_fmadd_ps(_mm256_set1_ps(lens.fx), xd,
-                        _mm256_fmadd_ps(_mm256_set1_ps(lens.skew), yd, _mm256_set1_ps(lens.cx)));
-    v = _mm256_fmadd_ps(_mm256_set1_ps(lens.fy), yd, _mm256_set1_ps(lens.cy));
+    if (lens.radial_only) {
+      // p1 = p2 = skew = 0 (the FieldSAFE lens): the full formula below reduces to exactly
+      // these operations (the tangential terms add an exact zero), so results are identical.
+      u = _mm256_fmadd_ps(_mm256_set1_ps(lens.fx), _mm256_mul_ps(x, radial), _mm256_set1_ps(lens.cx));
+      v = _mm256_fmadd_ps(_mm256_set1_ps(lens.fy), _mm256_mul_ps(y, radial), _mm256_set1_ps(lens.cy));
+    } else {
+      const __m256 xy2 = _mm256_mul_ps(_mm256_set1_ps(2.0f), _mm256_mul_ps(x, y));
+      const __m256 two = _mm256_set1_ps(2.0f);
+      const __m256 xd = _mm256_fmadd_ps(
+          x, radial, _mm256_fmadd_ps(_mm256_set1_ps(lens.p1), xy2,
+                                     _mm256_mul_ps(_mm256_set1_ps(lens.p2),
+                                                   _mm256_fmadd_ps(two, _mm256_mul_ps(x, x), r2))));
+      const __m256 yd = _mm256_fmadd_ps(
+          y, radial, _mm256_fmadd_ps(_mm256_set1_ps(lens.p2), xy2,
+                                     _mm256_mul_ps(_mm256_set1_ps(lens.p1),
+                                                   _mm256_fmadd_ps(two, _mm256_mul_ps(y, y), r2))));
+      u = _mm256_fmadd_ps(_mm256_set1_ps(lens.fx), xd,
+                          _mm256_fmadd_ps(_mm256_set1_ps(lens.skew), yd, _mm256_set1_ps(lens.cx)));
+      v = _mm256_fmadd_ps(_mm256_set1_ps(lens.fy), yd, _mm256_set1_ps(lens.cy));
+    }
   } else {
     u = _mm256_mul_ps(X, inv);
     v = _mm256_mul_ps(Y, inv);

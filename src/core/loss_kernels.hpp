@@ -17,6 +17,7 @@ struct MapView {
 // Lens terms used only by the distorted kernels.
 struct Lens {
   float fx, fy, cx, cy, skew, k1, k2, p1, p2, k3;
+  bool radial_only = false;  // p1 = p2 = skew = 0: skip the tangential arithmetic
 };
 
 // m: row-major 3x4. Pinhole kernels expect K [R | t] (one mat-vec and one reciprocal per point);
