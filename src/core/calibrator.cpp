@@ -12,13 +12,26 @@
 namespace thermal_lidar_calibration {
 namespace {
 
-// Pairs whose Eq. (1) loss is within the threshold; if fewer than half pass (the estimate is
-// still far off), the better half, so the next refinement has enough pairs to move.
-std::vector<std::size_t> selectInliers(const LossEvaluator& loss, const Extrinsic& estimate,
-                                       double threshold_px) {
+// Pairs the refinement may use: all, or, with exclude_truncated, those whose people do not
+// touch the image border, as long as that leaves at least half of them.
+std::vector<std::size_t> refinementCandidates(const LossEvaluator& loss, bool exclude_truncated) {
   const std::size_t n = loss.pairCount();
-  std::vector<std::pair<double, std::size_t>> scored(n);
-  for (std::size_t i = 0; i < n; ++i) scored[i] = {loss.pairLoss(i, estimate), i};
+  std::vector<std::size_t> all, whole;
+  for (std::size_t i = 0; i < n; ++i) {
+    all.push_back(i);
+    if (!loss.maskTouchesImageBorder(i)) whole.push_back(i);
+  }
+  return exclude_truncated && whole.size() * 2 >= n ? whole : all;
+}
+
+// Candidates whose Eq. (1) loss is within the threshold; if fewer than half pass (the estimate
+// is still far off), the better half, so the next refinement has enough pairs to move.
+std::vector<std::size_t> selectInliers(const LossEvaluator& loss, const Extrinsic& estimate,
+                                       double threshold_px,
+                                       const std::vector<std::size_t>& candidates) {
+  const std::size_t n = candidates.size();
+  std::vector<std::pair<double, std::size_t>> scored;
+  for (std::size_t i : candidates) scored.emplace_back(loss.pairLoss(i, estimate), i);
   std::vector<std::size_t> inliers;
   for (const auto& [value, i] : scored) {
     if (value <= threshold_px) inliers.push_back(i);
@@ -102,7 +115,10 @@ CalibrationResult calibrate(const CameraModel& camera, const std::vector<Calibra
     // its subset fits is accepted; one such pair pulls the optimum by decimetres. So the
     // refinement alternates: refine on the current inliers, then re-select the inliers among
     // ALL collected pairs with the paper's own test (Eq. 1 <= threshold_sample), keeping at least
-    // the better half, until the set no longer changes.
+    // the better half, until the set no longer changes. Pairs with people cut by the image
+    // border are left out of the re-selection (refine.exclude_truncated).
+    const std::vector<std::size_t> candidates =
+        refinementCandidates(nearest, config.refine.exclude_truncated);
     constexpr int kMaxInlierRounds = 5;
     for (int round = 1; round <= kMaxInlierRounds; ++round) {
       evaluations_before_stage = result.evaluations;
@@ -116,7 +132,7 @@ CalibrationResult calibrate(const CameraModel& camera, const std::vector<Calibra
       result.stopped = refined.stopped;
       if (result.stopped) break;
       const std::vector<std::size_t> reselected =
-          selectInliers(nearest, result.extrinsic, config.outlier.threshold_px);
+          selectInliers(nearest, result.extrinsic, config.outlier.threshold_px, candidates);
       if (reselected == used) break;
       used = reselected;
     }

@@ -134,6 +134,12 @@ LossEvaluator LossEvaluator::withPixelRule(PixelRule rule) const {
 
 std::size_t LossEvaluator::pairCount() const { return impl_->pairs.size(); }
 
+bool LossEvaluator::maskTouchesImageBorder(std::size_t pair) const {
+  const DistanceMap& d = impl_->pairs.at(pair).distance;
+  return d.x0() <= 0 || d.y0() <= 0 || d.x0() + d.width() >= camera_.width ||
+         d.y0() + d.height() >= camera_.height;
+}
+
 double LossEvaluator::pairLoss(std::size_t pair, const Extrinsic& extrinsic) const {
   impl_->points += impl_->pairs.at(pair).x.size();
   return impl_->pairLoss(impl_->paramsOf(extrinsic), pair, config_.pixel_rule);

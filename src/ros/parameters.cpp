@@ -26,8 +26,9 @@ const std::vector<std::string>& coreKeys() {
       "behind_camera_penalty_c1", "min_sample_large", "min_sample_small", "min_sample_switch",
       "outlier_iterations", "ratio_solution", "threshold_sample_px",
       "refine_initial_step_rot_rad", "refine_initial_step_trans_m", "refine_min_step_rot_rad",
-      "refine_min_step_trans_m", "refine_max_evaluations", "max_people", "skip_frames",
-      "min_points_per_cluster", "sync_slop", "sync_queue_size", "pairs_required"};
+      "refine_min_step_trans_m", "refine_max_evaluations", "refine_exclude_truncated",
+      "max_people", "skip_frames", "min_points_per_cluster", "sync_slop", "sync_queue_size",
+      "pairs_required"};
   return keys;
 }
 
@@ -171,6 +172,7 @@ CoreParameters loadCoreParameters(const ParameterSource& source) {
   readDoubleParameter(source, "refine_min_step_rot_rad", 0.0, true, 1.0, r.min_step_rot_rad);
   readDoubleParameter(source, "refine_min_step_trans_m", 0.0, true, 10.0, r.min_step_trans_m);
   readIntParameter(source, "refine_max_evaluations", 1, 100000000, r.max_evaluations);
+  readBoolParameter(source, "refine_exclude_truncated", r.exclude_truncated);
 
   readIntParameter(source, "max_people", 1, 1000, p.gate.max_people);
   readIntParameter(source, "skip_frames", 0, 100000, p.gate.skip_frames);
@@ -219,6 +221,7 @@ std::vector<std::pair<std::string, std::string>> describeCoreParameters(const Co
       {"refine_min_step_rot_rad", d(r.min_step_rot_rad)},
       {"refine_min_step_trans_m", d(r.min_step_trans_m)},
       {"refine_max_evaluations", i(r.max_evaluations)},
+      {"refine_exclude_truncated", r.exclude_truncated ? "true" : "false"},
       {"max_people", i(p.gate.max_people)},
       {"skip_frames", i(p.gate.skip_frames)},
       {"min_points_per_cluster", i(p.gate.min_points_per_cluster)},

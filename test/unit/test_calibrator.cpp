@@ -58,7 +58,9 @@ TEST(Calibrate, RefinementLowersTheSubPixelLossAndLandsCloseToTheTruth) {
   EXPECT_LT(rotationErrorRad(r.extrinsic, fieldsafeTruth()), 0.2 * kDeg);
   EXPECT_LT(translationErrorM(r.extrinsic, fieldsafeTruth()), 0.03);
   EXPECT_EQ(r.pair_losses.size(), data.size());
-  EXPECT_EQ(r.pairs_used, data.size());
+  std::size_t untruncated = 0;  // pairs with people cut by the border are left out
+  for (std::size_t i = 0; i < data.size(); ++i) untruncated += bilinear.maskTouchesImageBorder(i) ? 0 : 1;
+  EXPECT_EQ(r.pairs_used, untruncated);
   EXPECT_LE(r.extrinsic.rotation_vector.norm(), M_PI + 1e-9);  // canonical rotation vector
 }
 
@@ -74,12 +76,34 @@ TEST(Calibrate, RefinementReselectsInliersAndDropsMismatchedPairs) {
   config.seed = 6;
   const CalibrationResult r = calibrate(fieldsafeCamera(), data, config);
   for (int i : swapped) EXPECT_FALSE(r.inliers[i]) << "pair " << i;
-  EXPECT_GE(r.pairs_used, 24u);
+  EXPECT_GE(r.pairs_used, 18u);  // 30 - 4 mismatched - those with people cut by the border
   EXPECT_LT(rotationErrorRad(r.extrinsic, fieldsafeTruth()), 0.2 * kDeg);
   EXPECT_LT(translationErrorM(r.extrinsic, fieldsafeTruth()), 0.03);
   config.refine.mode = RefineMode::kNone;  // the paper's Algorithm 1 keeps them all
   const CalibrationResult plain = calibrate(fieldsafeCamera(), data, config);
   EXPECT_EQ(plain.pairs_used, data.size());
+}
+
+TEST(Calibrate, RefinementLeavesOutPairsWithPeopleCutByTheImageBorder) {
+  auto data = pairs(24, 14);
+  const std::vector<int> truncated{1, 5, 9};
+  for (int i : truncated) data[i].mask.at<std::uint8_t>(0, 0) = 1;  // a person at the border
+  CalibrationConfig config;
+  config.algorithm = Algorithm::kPlain;
+  config.evolution.population_size = 100;
+  config.evolution.max_iterations = 60;
+  const CalibrationResult excluded = calibrate(fieldsafeCamera(), data, config);
+  for (int i : truncated) EXPECT_FALSE(excluded.inliers[i]) << "pair " << i;
+  config.refine.exclude_truncated = false;
+  const CalibrationResult kept = calibrate(fieldsafeCamera(), data, config);
+  int used_truncated = 0;
+  for (int i : truncated) used_truncated += kept.inliers[i] ? 1 : 0;
+  EXPECT_GT(used_truncated, 0);
+  // When most pairs are truncated there is nothing better to use: all stay candidates.
+  for (auto& p : data) p.mask.at<std::uint8_t>(0, 0) = 1;
+  config.refine.exclude_truncated = true;
+  const CalibrationResult all = calibrate(fieldsafeCamera(), data, config);
+  EXPECT_GE(all.pairs_used, data.size() / 2);
 }
 
 TEST(Calibrate, ReportsProgressAndStopsWhenAsked) {

@@ -48,6 +48,9 @@ struct RefineConfig {
   double min_step_rot_rad = 1e-6;        // stop when the steps shrink below these
   double min_step_trans_m = 1e-6;
   int max_evaluations = 20000;
+  // Leave out pairs whose people touch the image border (truncated masks) while at least half
+  // of the pairs remain: their off-image LiDAR points bias the result.
+  bool exclude_truncated = true;
   void validate() const;
 };
 

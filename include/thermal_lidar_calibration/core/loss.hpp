@@ -47,6 +47,9 @@ class LossEvaluator {
   LossEvaluator withPixelRule(PixelRule rule) const;
 
   std::size_t pairCount() const;
+  // True when pair i's people touch the image border: the mask shows only part of someone the
+  // LiDAR cluster holds whole, so some of the pair's points have no counterpart in the mask.
+  bool maskTouchesImageBorder(std::size_t pair) const;
   const CameraModel& camera() const { return camera_; }
   const LossConfig& config() const { return config_; }
 
