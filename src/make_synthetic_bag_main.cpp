@@ -2,6 +2,7 @@
 // bag (LZ4) with the INTERFACE topics, and writes the true extrinsic to a YAML truth file.
 // Bad arguments: one-line error on stderr, exit 2. Other failures: exit 1.
 
+#include "thermal_lidar_calibration/ros/calibrated_tf_publisher.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 #include "thermal_lidar_calibration/synthetic/synthetic_rig.hpp"
 
@@ -267,22 +268,11 @@ void writeTruth(const Options& o, const syn::SyntheticRig& rig) {
 }
 
 tf2_msgs::TFMessage staticTransform(const Options& o, const Extrinsic& truth, double stamp_s) {
-  // The camera's pose in its parent, as if the parent were the LiDAR frame: T_lidar_camera.
-  const Eigen::Isometry3d T_lidar_camera = truth.T_camera_lidar().inverse();
-  const Eigen::Quaterniond q(T_lidar_camera.linear());
-  geometry_msgs::TransformStamped tf;
-  tf.header.stamp = ros::Time(stamp_s);
-  tf.header.frame_id = o.camera_parent;
-  tf.child_frame_id = o.camera_frame;
-  tf.transform.translation.x = T_lidar_camera.translation().x();
-  tf.transform.translation.y = T_lidar_camera.translation().y();
-  tf.transform.translation.z = T_lidar_camera.translation().z();
-  tf.transform.rotation.x = q.x();
-  tf.transform.rotation.y = q.y();
-  tf.transform.rotation.z = q.z();
-  tf.transform.rotation.w = q.w();
+  // The camera's pose in its parent, as if the parent were the LiDAR frame: T_lidar_camera, the
+  // same transform calibration_node publishes.
   tf2_msgs::TFMessage msg;
-  msg.transforms.push_back(tf);
+  msg.transforms.push_back(
+      ros_io::toTransformMsg(truth, o.camera_parent, o.camera_frame, ros::Time(stamp_s)));
   return msg;
 }
 
