@@ -28,7 +28,7 @@ kernels::MapView viewOf(const DistanceMap& d) {
 }
 
 kernels::Points pointsOf(const PreparedPair& p) {
-  return {p.x.data(), p.y.data(), p.z.data(), static_cast<int>(p.x.size())};
+  return {p.x.data(), p.y.data(), p.z.data(), static_cast<int>(p.count)};
 }
 
 }  // namespace
@@ -43,6 +43,11 @@ PreparedPair::PreparedPair(const CalibrationPair& pair) : distance(pair.mask) {
     z.push_back(p.z());
     centre += p.cast<double>();
   }
+  count = pair.points.size();
+  const std::size_t padded = (count + kernels::kPointBlock - 1) / kernels::kPointBlock * kernels::kPointBlock;
+  x.resize(padded, 0.0f);
+  y.resize(padded, 0.0f);
+  z.resize(padded, 0.0f);
   if (!pair.points.empty()) centre /= static_cast<double>(pair.points.size());
   for (const Eigen::Vector3f& p : pair.points) {
     radius = std::max(radius, (p.cast<double>() - centre).norm());
@@ -83,7 +88,7 @@ struct LossEvaluator::Impl {
 
   double pairLoss(const Params& m, std::size_t i, PixelRule rule) const {
     const PreparedPair& pair = pairs[i];
-    return static_cast<double>(sumPsi(m, pair, rule)) / static_cast<double>(pair.x.size());
+    return static_cast<double>(sumPsi(m, pair, rule)) / static_cast<double>(pair.count);
   }
 };
 
@@ -141,7 +146,7 @@ bool LossEvaluator::maskTouchesImageBorder(std::size_t pair) const {
 }
 
 double LossEvaluator::pairLoss(std::size_t pair, const Extrinsic& extrinsic) const {
-  impl_->points += impl_->pairs.at(pair).x.size();
+  impl_->points += impl_->pairs.at(pair).count;
   return impl_->pairLoss(impl_->paramsOf(extrinsic), pair, config_.pixel_rule);
 }
 
@@ -189,7 +194,7 @@ void LossEvaluator::lossBatch(const std::vector<Extrinsic>& candidates,
     for (std::size_t c = begin; c < end; ++c) out[c] = sums[c - begin] / pair_count;
   }
   std::uint64_t per_candidate = 0;
-  for (std::size_t pi : *pairs) per_candidate += impl_->pairs[pi].x.size();
+  for (std::size_t pi : *pairs) per_candidate += impl_->pairs[pi].count;
   impl_->points += per_candidate * n;
 }
 
@@ -198,7 +203,7 @@ double LossEvaluator::insideFraction(std::size_t pair, const Extrinsic& extrinsi
   const Params m = impl_->paramsOf(extrinsic);
   const int inside = kernels::countInside(m.data(), impl_->distorted, impl_->lens, pointsOf(p),
                                           camera_.width, camera_.height);
-  return static_cast<double>(inside) / static_cast<double>(p.x.size());
+  return static_cast<double>(inside) / static_cast<double>(p.count);
 }
 
 bool LossEvaluator::somePairInside(const std::vector<std::size_t>& pairs,
@@ -211,7 +216,7 @@ bool LossEvaluator::somePairInside(const std::vector<std::size_t>& pairs,
     // point of this pair can be (R preserves distances).
     const double z = R.row(2).dot(p.centre) + extrinsic.translation.z();
     if (z + p.radius <= 0.0) continue;
-    const int needed = static_cast<int>(std::ceil(fraction * static_cast<double>(p.x.size()) - 1e-9));
+    const int needed = static_cast<int>(std::ceil(fraction * static_cast<double>(p.count) - 1e-9));
     if (kernels::atLeastInside(m.data(), impl_->distorted, impl_->lens, pointsOf(p),
                                camera_.width, camera_.height, needed)) {
       return true;

@@ -61,9 +61,9 @@ inline bool projectScalar(const float* m, const Lens& lens, float px, float py, 
 
 template <bool kDistorted, bool kBilinear>
 float sumScalar(const float* m, const Lens& lens, const Points& p, const MapView& map,
-                float penalty, int begin) {
+                float penalty) {
   float acc = 0.0f;
-  for (int i = begin; i < p.count; ++i) {
+  for (int i = 0; i < p.count; ++i) {
     float u, v;
     const bool front = projectScalar<kDistorted>(m, lens, p.x[i], p.y[i], p.z[i], u, v);
     float d;
@@ -89,10 +89,9 @@ float sumScalar(const float* m, const Lens& lens, const Points& p, const MapView
 }
 
 template <bool kDistorted>
-int countInsideScalar(const float* m, const Lens& lens, const Points& p, int width, int height,
-                      int begin) {
+int countInsideScalar(const float* m, const Lens& lens, const Points& p, int width, int height) {
   int inside = 0;
-  for (int i = begin; i < p.count; ++i) {
+  for (int i = 0; i < p.count; ++i) {
     float u, v;
     const bool front = projectScalar<kDistorted>(m, lens, p.x[i], p.y[i], p.z[i], u, v);
     const float ru = std::floor(u + 0.5f), rv = std::floor(v + 0.5f);
@@ -220,32 +219,21 @@ TLC_AVX2 float sumAvx2(const float* mp, const Lens& lens, const Points& p, const
                    map.values};
   const __m256 pen = _mm256_set1_ps(penalty);
   __m256 acc = _mm256_setzero_ps();
-  int i = 0;
-  for (; i + 8 <= p.count; i += 8) {
+  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  for (int i = 0; i < p.count; i += 8) {
     const Avx2Projection q = projectAvx2<kDistorted>(m, lens, _mm256_loadu_ps(p.x + i),
                                                      _mm256_loadu_ps(p.y + i),
                                                      _mm256_loadu_ps(p.z + i));
-    acc = _mm256_add_ps(acc, _mm256_blendv_ps(pen, distanceAvx2<kBilinear>(q, mv), q.front));
-  }
-  float sum = horizontalSum(acc);
-  const int rest = p.count - i;
-  if (rest > 0) {
-    // The last < 8 points go through the same vector arithmetic on a zero-padded copy, so every
-    // point is scored identically; padding lanes are masked to contribute exactly zero.
-    alignas(32) float px[8] = {}, py[8] = {}, pz[8] = {};
-    for (int k = 0; k < rest; ++k) {
-      px[k] = p.x[i + k];
-      py[k] = p.y[i + k];
-      pz[k] = p.z[i + k];
+    __m256 psi = _mm256_blendv_ps(pen, distanceAvx2<kBilinear>(q, mv), q.front);
+    if (i + 8 > p.count) {
+      // The last block reads the zero padding: those lanes contribute exactly zero.
+      const __m256 real =
+          _mm256_castsi256_ps(_mm256_cmpgt_epi32(_mm256_set1_epi32(p.count - i), lane));
+      psi = _mm256_and_ps(psi, real);
     }
-    const __m256 real = _mm256_castsi256_ps(
-        _mm256_cmpgt_epi32(_mm256_set1_epi32(rest), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
-    const Avx2Projection q = projectAvx2<kDistorted>(m, lens, _mm256_load_ps(px),
-                                                     _mm256_load_ps(py), _mm256_load_ps(pz));
-    const __m256 psi = _mm256_blendv_ps(pen, distanceAvx2<kBilinear>(q, mv), q.front);
-    sum += horizontalSum(_mm256_and_ps(psi, real));
+    acc = _mm256_add_ps(acc, psi);
   }
-  return sum;
+  return horizontalSum(acc);
 }
 
 template <bool kDistorted>
@@ -256,8 +244,7 @@ TLC_AVX2 int countInsideAvx2(const float* mp, const Lens& lens, const Points& p,
   const __m256 half = _mm256_set1_ps(0.5f), zero = _mm256_setzero_ps();
   const __m256 max_u = _mm256_set1_ps(width - 1.0f), max_v = _mm256_set1_ps(height - 1.0f);
   int inside = 0;
-  int i = 0;
-  for (; i + 8 <= p.count; i += 8) {
+  for (int i = 0; i < p.count; i += 8) {
     const Avx2Projection q = projectAvx2<kDistorted>(m, lens, _mm256_loadu_ps(p.x + i),
                                                      _mm256_loadu_ps(p.y + i),
                                                      _mm256_loadu_ps(p.z + i));
@@ -267,9 +254,11 @@ TLC_AVX2 int countInsideAvx2(const float* mp, const Lens& lens, const Points& p,
     ok = _mm256_and_ps(ok, _mm256_cmp_ps(ru, max_u, _CMP_LE_OQ));
     ok = _mm256_and_ps(ok, _mm256_cmp_ps(rv, zero, _CMP_GE_OQ));
     ok = _mm256_and_ps(ok, _mm256_cmp_ps(rv, max_v, _CMP_LE_OQ));
-    inside += __builtin_popcount(static_cast<unsigned>(_mm256_movemask_ps(ok)));
+    unsigned bits = static_cast<unsigned>(_mm256_movemask_ps(ok));
+    if (i + 8 > p.count) bits &= (1u << (p.count - i)) - 1u;  // drop the padding lanes
+    inside += __builtin_popcount(bits);
   }
-  return inside + countInsideScalar<kDistorted>(mp, lens, p, width, height, i);
+  return inside;
 }
 
 bool cpuHasAvx2() {
@@ -283,7 +272,7 @@ float sum(const float* m, const Lens& lens, const Points& p, const MapView& map,
 #if TLC_HAVE_AVX2_PATH
   if (cpuHasAvx2()) return sumAvx2<kDistorted, kBilinear>(m, lens, p, map, penalty);
 #endif
-  return sumScalar<kDistorted, kBilinear>(m, lens, p, map, penalty, 0);
+  return sumScalar<kDistorted, kBilinear>(m, lens, p, map, penalty);
 }
 
 }  // namespace
@@ -314,8 +303,8 @@ int countInside(const float* m, bool distorted, const Lens& lens, const Points& 
                      : countInsideAvx2<false>(m, kNoLens, p, width, height);
   }
 #endif
-  return distorted ? countInsideScalar<true>(m, lens, p, width, height, 0)
-                   : countInsideScalar<false>(m, kNoLens, p, width, height, 0);
+  return distorted ? countInsideScalar<true>(m, lens, p, width, height)
+                   : countInsideScalar<false>(m, kNoLens, p, width, height);
 }
 
 bool atLeastInside(const float* m, bool distorted, const Lens& lens, const Points& p, int width,

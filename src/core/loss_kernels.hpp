@@ -22,6 +22,9 @@ struct Lens {
 
 // m: row-major 3x4. Pinhole kernels expect K [R | t] (one mat-vec and one reciprocal per point);
 // distorted kernels expect [R | t] and apply the lens after the division.
+// Points are processed in blocks of kPointBlock; the arrays must be readable (any finite
+// values) up to `count` rounded up to a multiple of kPointBlock, as PreparedPair pads them.
+constexpr int kPointBlock = 8;
 struct Points {
   const float* x;
   const float* y;

@@ -22,7 +22,11 @@ TEST(LossKernels, RadialOnlyLensPathIsBitIdenticalToTheFullFormula) {
     y.push_back(float(rng.uniform(-3, 3)));
     z.push_back(float(rng.uniform(-2, 20)));
   }
-  const kernels::Points points{x.data(), y.data(), z.data(), int(x.size())};
+  const int count = int(x.size());
+  x.resize(208, 0.0f);  // the kernels read whole blocks of 8: pad as PreparedPair does
+  y.resize(208, 0.0f);
+  z.resize(208, 0.0f);
+  const kernels::Points points{x.data(), y.data(), z.data(), count};
   const float m[12] = {0.99f, 0.01f, -0.02f, 0.1f, -0.01f, 0.98f, 0.05f, -0.2f, 0.02f, -0.05f, 0.99f, 0.3f};
   kernels::Lens full{772.41f, 772.83f, 322.67f, 250.66f, 0.0f, -0.0496f, 0.3632f, 0.0f, 0.0f, 0.01f};
   kernels::Lens radial = full;

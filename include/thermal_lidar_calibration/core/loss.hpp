@@ -25,9 +25,11 @@ struct LossConfig {
   void validate() const;
 };
 
-// Points of one pair in float32 structure-of-arrays form plus its distance map.
+// Points of one pair in float32 structure-of-arrays form plus its distance map. The arrays are
+// zero-padded to a multiple of 8 so the vector kernels never copy a partial last block.
 struct PreparedPair {
-  std::vector<float> x, y, z;
+  std::vector<float> x, y, z;  // padded; the first `count` entries are the points
+  std::size_t count = 0;
   DistanceMap distance;
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // bounding sphere of the points
   double radius = 0.0;
