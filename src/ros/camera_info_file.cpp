@@ -1,6 +1,7 @@
 // camera_calibration / camera_info_manager YAML files <-> CameraModel.
 
 #include "thermal_lidar_calibration/ros/camera_info_file.hpp"
+#include "thermal_lidar_calibration/ros/yaml_file.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -85,15 +86,7 @@ void emitMatrix(YAML::Emitter& out, const std::string& key, int rows, int cols,
 }  // namespace
 
 CameraModel loadCameraInfoFile(const std::string& path) {
-  std::ifstream probe(path);
-  if (!probe) fail(path, "cannot be opened (missing or unreadable); check the path");
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::Exception& e) {
-    fail(path, std::string("is not valid YAML (") + e.msg + " at line " +
-                   std::to_string(e.mark.line + 1) + ")");
-  }
+  const YAML::Node root = loadYamlFile(path, "camera info file");
   if (!root.IsMap()) {
     fail(path, "is not a YAML map; write a camera_calibration file (image_width, image_height, "
                "camera_matrix, distortion_model, distortion_coefficients)");

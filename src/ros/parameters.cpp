@@ -4,6 +4,7 @@
 #include "thermal_lidar_calibration/ros/parameters.hpp"
 #include "thermal_lidar_calibration/ros/parameter_readers.hpp"
 #include "thermal_lidar_calibration/ros/unknown_parameters.hpp"
+#include "thermal_lidar_calibration/ros/yaml_file.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -80,22 +81,11 @@ class YamlParameterSource : public ParameterSource {
 };
 
 YAML::Node loadYamlMap(const std::string& path) {
-  std::ifstream probe(path);
-  if (!probe) {
-    throw std::invalid_argument("parameter file " + path +
-                                " cannot be opened (missing or unreadable); check the path");
-  }
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::Exception& e) {
-    throw std::invalid_argument("parameter file " + path + " is not valid YAML (" + e.msg +
-                                " at line " + std::to_string(e.mark.line + 1) + ")");
-  }
+  const YAML::Node root = loadYamlFile(path, "parameter file");
   if (root.IsNull()) return YAML::Node(YAML::NodeType::Map);  // an empty file: all defaults
   if (!root.IsMap()) {
     throw std::invalid_argument("parameter file " + path +
-                                " is not a YAML map; write one 'key: value' per line");
+                                ": is not a YAML map; write one 'key: value' per line");
   }
   return root;
 }

@@ -1,6 +1,7 @@
 // The YAML result file of INTERFACE.md and a reader for result / truth files.
 
 #include "thermal_lidar_calibration/ros/result_file.hpp"
+#include "thermal_lidar_calibration/ros/yaml_file.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -161,14 +162,7 @@ void writeResultFile(const std::string& path, const CalibrationResult& result,
 }
 
 Extrinsic readExtrinsicFile(const std::string& path) {
-  std::ifstream probe(path);
-  if (!probe) fail(path, "cannot be opened (missing or unreadable); check the path");
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::Exception& e) {
-    fail(path, std::string("is not valid YAML (") + e.msg + ")");
-  }
+  const YAML::Node root = loadYamlFile(path, "extrinsic file");
   if (!root.IsMap()) fail(path, "is not a YAML map with rotation_vector and translation");
   if (!root["translation"]) fail(path, "has no 'translation' [tx, ty, tz] (metres)");
   const std::vector<double> t = readNumbers(root["translation"], "translation", path);
