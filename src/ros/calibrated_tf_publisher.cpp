@@ -33,7 +33,7 @@ std::string staticTransformPublisherCommand(const geometry_msgs::TransformStampe
   std::ostringstream s;
   s << std::fixed << std::setprecision(6) << "rosrun tf2_ros static_transform_publisher "
     << t.transform.translation.x << ' ' << t.transform.translation.y << ' '
-    << t.transform.translation.z << ' ' << t.transform.rotation.x << ' '
+    << t.transform.translation.z << ' ' << std::setprecision(9) << t.transform.rotation.x << ' '
     << t.transform.rotation.y << ' ' << t.transform.rotation.z << ' ' << t.transform.rotation.w
     << ' ' << t.header.frame_id << ' ' << t.child_frame_id;
   return s.str();

@@ -1,4 +1,5 @@
 #include "thermal_lidar_calibration/ros/calibration_summary.hpp"
+#include "thermal_lidar_calibration/ros/calibrated_tf_publisher.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -15,21 +16,6 @@ std::string fmt(const char* format, double a, double b, double c) {
 }
 
 }  // namespace
-
-std::string staticTransformCommand(const Extrinsic& extrinsic, const std::string& lidar_frame,
-                                   const std::string& camera_frame) {
-  // static_transform_publisher x y z qx qy qz qw frame_id child_frame_id publishes
-  // p_frame = T * p_child, i.e. T_lidar_camera = inverse(T_camera_lidar).
-  const Eigen::Matrix3d R = extrinsic.rotationMatrix();
-  const Eigen::Vector3d position = -R.transpose() * extrinsic.translation;
-  const Eigen::Quaterniond q(R.transpose());
-  char buf[512];
-  std::snprintf(buf, sizeof(buf),
-                "rosrun tf2_ros static_transform_publisher %.6f %.6f %.6f %.9f %.9f %.9f %.9f %s %s",
-                position.x(), position.y(), position.z(), q.x(), q.y(), q.z(), q.w(),
-                lidar_frame.c_str(), camera_frame.c_str());
-  return buf;
-}
 
 std::string formatCalibrationSummary(const SummaryInput& in) {
   const CalibrationResult& r = in.result;
@@ -73,7 +59,7 @@ std::string formatCalibrationSummary(const SummaryInput& in) {
                                     static_cast<double>(r.evaluations))
     << "\n";
   s << "  result file      " << in.output_path << "\n";
-  s << "  tf               " << staticTransformCommand(e, in.lidar_frame, in.camera_frame)
+  s << "  tf               " << staticTransformPublisherCommand(toTransformMsg(e, in.lidar_frame, in.camera_frame, ros::Time()))
     << "\n";
   return s.str();
 }

@@ -32,10 +32,5 @@ struct SummaryInput {
 
 std::string formatCalibrationSummary(const SummaryInput& in);
 
-// "rosrun tf2_ros static_transform_publisher x y z qx qy qz qw lidar_frame camera_frame":
-// the pose of the camera in the LiDAR frame (the inverse of p_C = R p_L + t).
-std::string staticTransformCommand(const Extrinsic& extrinsic, const std::string& lidar_frame,
-                                   const std::string& camera_frame);
-
 }  // namespace ros_io
 }  // namespace thermal_lidar_calibration
