@@ -8,18 +8,17 @@
 # each beside the loss of the truth on the same pairs. Takes a few minutes on 2 cores.
 # Usage: scripts/accuracy.sh [SEEDS...]   (default 1 2 3 4 5)
 set -euo pipefail
-export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
-repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-bash "$repo/scripts/install_deps.sh"
-ws="$(bash "$repo/scripts/build.sh" | tail -n 1)"
+# shellcheck source=scripts/workspace.sh
+source "$(dirname "${BASH_SOURCE[0]}")/workspace.sh"
+prepare_workspace
 bin="$ws/devel/lib/thermal_lidar_calibration"
 out="${TLC_ACCURACY_OUT:-$repo/out/accuracy}"
 mkdir -p "$out"
 seeds=("$@")
 [ ${#seeds[@]} -gt 0 ] || seeds=(1 2 3 4 5)
 
-[ -f "$out/clean.bag" ] || "$bin/make_synthetic_bag" --output "$out/clean.bag" --truth "$out/clean.truth.yaml" --seed 1 --noise clean >&2
-[ -f "$out/noisy.bag" ] || "$bin/make_synthetic_bag" --output "$out/noisy.bag" --truth "$out/noisy.truth.yaml" --seed 2 --noise realistic >&2
+"$bin/make_synthetic_bag" --output "$out/clean.bag" --truth "$out/clean.truth.yaml" --seed 1 --noise clean >&2
+"$bin/make_synthetic_bag" --output "$out/noisy.bag" --truth "$out/noisy.truth.yaml" --seed 2 --noise realistic >&2
 
 run() {  # name bag truth seed extra-args...
   local name=$1 bag=$2 truth=$3 seed=$4

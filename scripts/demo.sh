@@ -5,15 +5,9 @@
 # Output in out/demo/ (bag, truth, result YAML). Options are passed to calibrate_bag, e.g.
 #   scripts/demo.sh --refine none      # the paper's method exactly
 set -euo pipefail
-export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
-repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-bash "$repo/scripts/install_deps.sh"
-ws="$(bash "$repo/scripts/build.sh" | tail -n 1)"
-# Debian's catkin profile hooks read unset variables: source them without -u.
-set +u
-# shellcheck disable=SC1091
-source "$ws/devel/setup.bash"
-set -u
+# shellcheck source=scripts/workspace.sh
+source "$(dirname "${BASH_SOURCE[0]}")/workspace.sh"
+prepare_workspace
 out="${TLC_DEMO_OUT:-$repo/out/demo}"
 mkdir -p "$out"
 bin="$ws/devel/lib/thermal_lidar_calibration"

@@ -3,15 +3,9 @@
 # the package and its tests, runs the core gtests, the ROS-side gtests, the calibrate_bag CLI
 # tests and the calibration_node rostests, then prints "N passed, N failed".
 set -euo pipefail
-export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
-repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-bash "$repo/scripts/install_deps.sh"
-ws="$(bash "$repo/scripts/build.sh" --tests | tail -n 1)"
-# Debian's catkin profile hooks read unset variables: source them without -u.
-set +u
-# shellcheck disable=SC1091
-source "$ws/devel/setup.bash"
-set -u
+# shellcheck source=scripts/workspace.sh
+source "$(dirname "${BASH_SOURCE[0]}")/workspace.sh"
+prepare_workspace --tests
 export ROS_HOME="${ROS_HOME:-$ws/ros_home}"
 mkdir -p "$ROS_HOME"
 cd "$ws"

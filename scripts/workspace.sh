@@ -1,0 +1,18 @@
+# Sourced by the scripts in this folder (not run on its own). Defines prepare_workspace, which
+# installs the dependencies, builds the package in its catkin workspace and sources it, leaving
+# the workspace path in $ws and the checkout in $repo.
+#   prepare_workspace            build the package
+#   prepare_workspace --tests    also build the tests
+# Debian's ROS tools need Debian's python3, not a pyenv one that may be first on PATH.
+export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+
+prepare_workspace() {
+  bash "$repo/scripts/install_deps.sh"
+  ws="$(bash "$repo/scripts/build.sh" "$@" | tail -n 1)"
+  # Debian's catkin profile hooks read unset variables: source them without -u.
+  set +u
+  # shellcheck disable=SC1091
+  source "$ws/devel/setup.bash"
+  set -u
+}
