@@ -89,7 +89,7 @@ float sumScalar(const float* m, const Lens& lens, const Points& p, const MapView
 }
 
 template <bool kDistorted>
-int countInsideScalar(const float* m, const Lens& lens, const Points& p, int width, int height) {
+int countInsideScalarImpl(const float* m, const Lens& lens, const Points& p, int width, int height) {
   int inside = 0;
   for (int i = 0; i < p.count; ++i) {
     float u, v;
@@ -303,8 +303,24 @@ int countInside(const float* m, bool distorted, const Lens& lens, const Points& 
                      : countInsideAvx2<false>(m, kNoLens, p, width, height);
   }
 #endif
-  return distorted ? countInsideScalar<true>(m, lens, p, width, height)
-                   : countInsideScalar<false>(m, kNoLens, p, width, height);
+  return distorted ? countInsideScalarImpl<true>(m, lens, p, width, height)
+                   : countInsideScalarImpl<false>(m, kNoLens, p, width, height);
+}
+
+float sumPsiScalar(const float* m, bool distorted, bool bilinear, const Lens& lens,
+                   const Points& p, const MapView& map, float penalty) {
+  if (distorted) {
+    return bilinear ? sumScalar<true, true>(m, lens, p, map, penalty)
+                    : sumScalar<true, false>(m, lens, p, map, penalty);
+  }
+  return bilinear ? sumScalar<false, true>(m, kNoLens, p, map, penalty)
+                  : sumScalar<false, false>(m, kNoLens, p, map, penalty);
+}
+
+int countInsideScalar(const float* m, bool distorted, const Lens& lens, const Points& p,
+                      int width, int height) {
+  return distorted ? countInsideScalarImpl<true>(m, lens, p, width, height)
+                   : countInsideScalarImpl<false>(m, kNoLens, p, width, height);
 }
 
 bool atLeastInside(const float* m, bool distorted, const Lens& lens, const Points& p, int width,

@@ -43,6 +43,13 @@ float sumPsiBilinearDistorted(const float* m, const Lens& lens, const Points& p,
 int countInside(const float* m, bool distorted, const Lens& lens, const Points& p, int width,
                 int height);
 
+// The portable versions the functions above fall back to on CPUs without AVX2+FMA, exposed so
+// tests can check them against the vector code on any machine.
+float sumPsiScalar(const float* m, bool distorted, bool bilinear, const Lens& lens,
+                   const Points& p, const MapView& map, float penalty);
+int countInsideScalar(const float* m, bool distorted, const Lens& lens, const Points& p,
+                      int width, int height);
+
 // countInside(...) >= needed, deciding as soon as the remaining points cannot change it.
 bool atLeastInside(const float* m, bool distorted, const Lens& lens, const Points& p, int width,
                    int height, int needed);
