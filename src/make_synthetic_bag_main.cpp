@@ -7,6 +7,7 @@
 #include "thermal_lidar_calibration/synthetic/synthetic_rig.hpp"
 
 #include <geometry_msgs/TransformStamped.h>
+#include <boost/make_shared.hpp>
 #include <rosbag/bag.h>
 #include <tf2_msgs/TFMessage.h>
 #include <yaml-cpp/yaml.h>
@@ -267,6 +268,19 @@ void writeTruth(const Options& o, const syn::SyntheticRig& rig) {
   if (!file) throw std::runtime_error("failed writing truth file '" + o.truth + "'");
 }
 
+// The connection header `rosbag record` stores for a latched topic: `rosbag play` then
+// republishes it latched, so a node that subscribes after the first instant still receives it.
+template <typename Msg>
+boost::shared_ptr<ros::M_string> latchedConnectionHeader() {
+  auto header = boost::make_shared<ros::M_string>();
+  (*header)["type"] = ros::message_traits::datatype<Msg>();
+  (*header)["md5sum"] = ros::message_traits::md5sum<Msg>();
+  (*header)["message_definition"] = ros::message_traits::definition<Msg>();
+  (*header)["callerid"] = "/make_synthetic_bag";
+  (*header)["latching"] = "1";
+  return header;
+}
+
 tf2_msgs::TFMessage staticTransform(const Options& o, const Extrinsic& truth, double stamp_s) {
   // The camera's pose in its parent, as if the parent were the LiDAR frame: T_lidar_camera, the
   // same transform calibration_node publishes.
@@ -287,7 +301,8 @@ int run(const Options& o) {
   if (!o.camera_parent.empty()) {
     // One message before everything else (what a latched /tf_static looks like in a bag).
     const double tf_stamp_s = c.start_stamp_s - o.time_jitter_s - 0.01;
-    bag.write("/tf_static", ros::Time(tf_stamp_s), staticTransform(o, c.rig.truth, tf_stamp_s));
+    bag.write("/tf_static", ros::Time(tf_stamp_s), staticTransform(o, c.rig.truth, tf_stamp_s),
+              latchedConnectionHeader<tf2_msgs::TFMessage>());
   }
   const sensor_msgs::CameraInfo info_template = ros_io::cameraInfoFromModel(c.rig.camera);
 

@@ -28,6 +28,12 @@ for topic in /thermal/image_raw /thermal/camera_info /thermal/human_mask /lidar/
   check "topic $topic present" grep -q "$topic" <<<"$info"
 done
 check "lz4 compression" grep -q "lz4" <<<"$info"
+# /tf_static is stored latched, as rosbag record stores it, so rosbag play republishes it latched.
+check "/tf_static is latched" /usr/bin/python3 -c "
+import rosbag, sys
+b = rosbag.Bag(sys.argv[1])
+sys.exit(0 if any(c.topic == '/tf_static' and c.header.get('latching') in (b'1', '1')
+                  for c in b._get_connections()) else 1)" "$dir/a.bag"
 for key in lidar_frame camera_frame rotation_vector translation rotation_matrix quaternion_xyzw rig seed frames people; do
   check "truth key $key" grep -q "^$key:" "$dir/a.bag.truth.yaml"
 done
