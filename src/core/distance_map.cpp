@@ -10,11 +10,11 @@
 namespace thermal_lidar_calibration {
 namespace {
 
-// Projections can land arbitrarily far away (z -> 0+); clamping keeps the float->int conversions
-// defined. 1e6 px is ~1500 image widths: such a point already scores far above c1 * max(h, w).
-constexpr float kCoordinateLimit = 1e6f;
-
-float clampf(float x, float lo, float hi) { return std::min(std::max(x, lo), hi); }
+// max/min with the semantics of the vector instructions the loss kernels use (the second
+// operand when either is NaN), so a NaN coordinate clamps into the box as it does there.
+float maxps(float a, float b) { return a > b ? a : b; }
+float minps(float a, float b) { return a < b ? a : b; }
+float clampps(float x, float lo, float hi) { return minps(maxps(x, lo), hi); }
 
 }  // namespace
 
@@ -87,21 +87,18 @@ float DistanceMap::atPixel(int u, int v) const {
 
 float DistanceMap::nearest(float u, float v) const {
   // Pixel rule of the paper: the projected point takes the nearest pixel centre; ties (.5) go up.
-  const float ru = std::floor(clampf(u, -kCoordinateLimit, kCoordinateLimit) + 0.5f);
-  const float rv = std::floor(clampf(v, -kCoordinateLimit, kCoordinateLimit) + 0.5f);
-  const float cu = clampf(ru, static_cast<float>(x0_), static_cast<float>(x0_ + width_ - 1));
-  const float cv = clampf(rv, static_cast<float>(y0_), static_cast<float>(y0_ + height_ - 1));
+  const float ru = std::floor(u + 0.5f), rv = std::floor(v + 0.5f);
+  const float cu = clampps(ru, static_cast<float>(x0_), static_cast<float>(x0_ + width_ - 1));
+  const float cv = clampps(rv, static_cast<float>(y0_), static_cast<float>(y0_ + height_ - 1));
   const int ix = static_cast<int>(cu) - x0_;
   const int iy = static_cast<int>(cv) - y0_;
-  return std::fabs(ru - cu) + std::fabs(rv - cv) +
+  return minps(std::fabs(ru - cu) + std::fabs(rv - cv), kOffBoxCap) +
          values_[static_cast<std::size_t>(iy) * width_ + ix];
 }
 
 float DistanceMap::bilinear(float u, float v) const {
-  const float lu = clampf(u, -kCoordinateLimit, kCoordinateLimit);
-  const float lv = clampf(v, -kCoordinateLimit, kCoordinateLimit);
-  const float cu = clampf(lu, static_cast<float>(x0_), static_cast<float>(x0_ + width_ - 1));
-  const float cv = clampf(lv, static_cast<float>(y0_), static_cast<float>(y0_ + height_ - 1));
+  const float cu = clampps(u, static_cast<float>(x0_), static_cast<float>(x0_ + width_ - 1));
+  const float cv = clampps(v, static_cast<float>(y0_), static_cast<float>(y0_ + height_ - 1));
   const float fx = cu - static_cast<float>(x0_);
   const float fy = cv - static_cast<float>(y0_);
   const int ix = std::min(static_cast<int>(fx), width_ - 2);
@@ -111,7 +108,7 @@ float DistanceMap::bilinear(float u, float v) const {
   const float* p = &values_[static_cast<std::size_t>(iy) * width_ + ix];
   const float top = p[0] + ax * (p[1] - p[0]);
   const float bottom = p[width_] + ax * (p[width_ + 1] - p[width_]);
-  return std::fabs(lu - cu) + std::fabs(lv - cv) + top + ay * (bottom - top);
+  return minps(std::fabs(u - cu) + std::fabs(v - cv), kOffBoxCap) + (top + ay * (bottom - top));
 }
 
 }  // namespace thermal_lidar_calibration

@@ -97,6 +97,12 @@ LossEvaluator::LossEvaluator(const CameraModel& camera, const std::vector<Calibr
     : camera_(camera), config_(config), impl_(std::make_shared<Impl>()) {
   camera_.validate();
   config_.validate();
+  // The kernels compute pixel indices in float, exact only below 2^24 (16.7 megapixels).
+  if (static_cast<long long>(camera_.width) * camera_.height >= (1LL << 24)) {
+    throw std::invalid_argument("loss: images of 16.7 megapixels or more are not supported (" +
+                                std::to_string(camera_.width) + "x" +
+                                std::to_string(camera_.height) + ")");
+  }
   impl_->pairs.reserve(pairs.size());
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const CalibrationPair& p = pairs[i];

@@ -6,8 +6,12 @@
 
 #include "loss_kernels.hpp"
 
+#include "thermal_lidar_calibration/core/distance_map.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define TLC_HAVE_AVX2_PATH 1
@@ -21,12 +25,27 @@ namespace thermal_lidar_calibration {
 namespace kernels {
 namespace {
 
-// Far-away projections (z -> 0+) are clamped so float->int conversions stay defined; a point
-// 1e6 px away already costs far more than the behind-camera penalty.
-constexpr float kLimit = 1e6f;
-constexpr float kNormalisedLimit = 1e4f;
+// A point's distance outside the crop box is capped as DistanceMap's reference rules do.
+// Float->int conversions only ever see coordinates clamped into the box.
+constexpr float kOffLimit = DistanceMap::kOffBoxCap;
+// r^2 is clamped before the lens polynomial so it stays finite (and NaN becomes the limit):
+// |x|, |y| up to 1e4, i.e. 89.99 degrees off the axis, far outside any image.
+constexpr float kRadiusSquaredLimit = 2e8f;
 
-inline float clampf(float x, float lo, float hi) { return x < lo ? lo : (x > hi ? hi : x); }
+// The exact semantics of the SSE/AVX max and min instructions (the second operand when either
+// is NaN), so the scalar code treats NaN exactly as the vector code does.
+inline float maxps(float a, float b) { return a > b ? a : b; }
+inline float minps(float a, float b) { return a < b ? a : b; }
+inline float clampps(float x, float lo, float hi) { return minps(maxps(x, lo), hi); }
+
+// The map's values addressed by absolute pixel index v * width + u: saves two subtractions per
+// point. Computed on integers, only ever dereferenced inside the crop.
+inline const float* originOf(const MapView& map) {
+  const std::ptrdiff_t offset =
+      static_cast<std::ptrdiff_t>(map.y0) * map.width + static_cast<std::ptrdiff_t>(map.x0);
+  return reinterpret_cast<const float*>(reinterpret_cast<std::uintptr_t>(map.values) -
+                                        static_cast<std::uintptr_t>(offset) * sizeof(float));
+}
 
 const Lens kNoLens{1, 1, 0, 0, 0, 0, 0, 0, 0, 0};
 
@@ -40,11 +59,11 @@ inline bool projectScalar(const float* m, const Lens& lens, float px, float py, 
   const float Y = m[4] * px + m[5] * py + m[6] * pz + m[7];
   const float Z = m[8] * px + m[9] * py + m[10] * pz + m[11];
   const bool front = Z > 0.0f;
-  const float inv = 1.0f / (front ? Z : 1.0f);
+  // Behind the camera (Z <= 0, including 1/0 = inf) u and v are garbage the callers never use.
+  const float inv = 1.0f / Z;
   if constexpr (kDistorted) {
-    const float x = clampf(X * inv, -kNormalisedLimit, kNormalisedLimit);
-    const float y = clampf(Y * inv, -kNormalisedLimit, kNormalisedLimit);
-    const float r2 = x * x + y * y;
+    const float x = X * inv, y = Y * inv;
+    const float r2 = minps(x * x + y * y, kRadiusSquaredLimit);
     const float radial = 1.0f + r2 * (lens.k1 + r2 * (lens.k2 + r2 * lens.k3));
     const float xd = x * radial + 2.0f * lens.p1 * x * y + lens.p2 * (r2 + 2.0f * x * x);
     const float yd = y * radial + lens.p1 * (r2 + 2.0f * y * y) + 2.0f * lens.p2 * x * y;
@@ -54,34 +73,33 @@ inline bool projectScalar(const float* m, const Lens& lens, float px, float py, 
     u = X * inv;
     v = Y * inv;
   }
-  u = clampf(u, -kLimit, kLimit);
-  v = clampf(v, -kLimit, kLimit);
   return front;
 }
 
 template <bool kDistorted, bool kBilinear>
 float sumScalar(const float* m, const Lens& lens, const Points& p, const MapView& map,
                 float penalty) {
+  const float* origin = originOf(map);
   float acc = 0.0f;
   for (int i = 0; i < p.count; ++i) {
     float u, v;
     const bool front = projectScalar<kDistorted>(m, lens, p.x[i], p.y[i], p.z[i], u, v);
     float d;
     if constexpr (kBilinear) {
-      const float cu = clampf(u, map.x0, map.x1), cv = clampf(v, map.y0, map.y1);
-      const float fx = cu - map.x0, fy = cv - map.y0;
-      const float ix = std::fmin(std::floor(fx), map.x1 - map.x0 - 1.0f);
-      const float iy = std::fmin(std::floor(fy), map.y1 - map.y0 - 1.0f);
-      const float ax = fx - ix, ay = fy - iy;
-      const float* q = map.values + static_cast<int>(iy) * map.width + static_cast<int>(ix);
+      const float cu = clampps(u, map.x0, map.x1), cv = clampps(v, map.y0, map.y1);
+      const float ix = minps(std::floor(cu), map.x1 - 1.0f);
+      const float iy = minps(std::floor(cv), map.y1 - 1.0f);
+      const float ax = cu - ix, ay = cv - iy;
+      const float* q = origin + static_cast<int>(iy) * map.width + static_cast<int>(ix);
       const float top = q[0] + ax * (q[1] - q[0]);
       const float bottom = q[map.width] + ax * (q[map.width + 1] - q[map.width]);
-      d = std::fabs(u - cu) + std::fabs(v - cv) + top + ay * (bottom - top);
+      const float off = minps(std::fabs(u - cu) + std::fabs(v - cv), kOffLimit);
+      d = off + (top + ay * (bottom - top));
     } else {
       const float ru = std::floor(u + 0.5f), rv = std::floor(v + 0.5f);  // ties go up
-      const float cu = clampf(ru, map.x0, map.x1), cv = clampf(rv, map.y0, map.y1);
-      const int index = static_cast<int>(cv - map.y0) * map.width + static_cast<int>(cu - map.x0);
-      d = std::fabs(ru - cu) + std::fabs(rv - cv) + map.values[index];
+      const float cu = clampps(ru, map.x0, map.x1), cv = clampps(rv, map.y0, map.y1);
+      const int index = static_cast<int>(cv) * map.width + static_cast<int>(cu);
+      d = minps(std::fabs(ru - cu) + std::fabs(rv - cv), kOffLimit) + origin[index];
     }
     acc += front ? d : penalty;
   }
@@ -115,13 +133,13 @@ TLC_AVX2 inline Avx2Projection projectAvx2(const __m256* m, const Lens& lens, __
   const __m256 Z = _mm256_fmadd_ps(m[8], px, _mm256_fmadd_ps(m[9], py, _mm256_fmadd_ps(m[10], pz, m[11])));
   const __m256 one = _mm256_set1_ps(1.0f);
   const __m256 front = _mm256_cmp_ps(Z, _mm256_setzero_ps(), _CMP_GT_OQ);
-  const __m256 inv = _mm256_div_ps(one, _mm256_blendv_ps(one, Z, front));
+  // Behind the camera (Z <= 0) u and v are garbage that the callers mask out.
+  const __m256 inv = _mm256_div_ps(one, Z);
   __m256 u, v;
   if constexpr (kDistorted) {
-    const __m256 lim = _mm256_set1_ps(kNormalisedLimit), nlim = _mm256_set1_ps(-kNormalisedLimit);
-    const __m256 x = _mm256_min_ps(_mm256_max_ps(_mm256_mul_ps(X, inv), nlim), lim);
-    const __m256 y = _mm256_min_ps(_mm256_max_ps(_mm256_mul_ps(Y, inv), nlim), lim);
-    const __m256 r2 = _mm256_fmadd_ps(x, x, _mm256_mul_ps(y, y));
+    const __m256 x = _mm256_mul_ps(X, inv), y = _mm256_mul_ps(Y, inv);
+    const __m256 r2 = _mm256_min_ps(_mm256_fmadd_ps(x, x, _mm256_mul_ps(y, y)),
+                                    _mm256_set1_ps(kRadiusSquaredLimit));
     const __m256 poly = _mm256_fmadd_ps(r2, _mm256_set1_ps(lens.k3), _mm256_set1_ps(lens.k2));
     const __m256 radial = _mm256_fmadd_ps(
         r2, _mm256_fmadd_ps(r2, poly, _mm256_set1_ps(lens.k1)), one);
@@ -149,9 +167,7 @@ TLC_AVX2 inline Avx2Projection projectAvx2(const __m256* m, const Lens& lens, __
     u = _mm256_mul_ps(X, inv);
     v = _mm256_mul_ps(Y, inv);
   }
-  const __m256 lim = _mm256_set1_ps(kLimit), nlim = _mm256_set1_ps(-kLimit);
-  return {_mm256_min_ps(_mm256_max_ps(u, nlim), lim), _mm256_min_ps(_mm256_max_ps(v, nlim), lim),
-          front};
+  return {u, v, front};
 }
 
 TLC_AVX2 inline float horizontalSum(__m256 a) {
@@ -162,9 +178,9 @@ TLC_AVX2 inline float horizontalSum(__m256 a) {
 
 // Map constants broadcast once per (candidate, pair).
 struct Avx2Map {
-  __m256 x0, y0, x1, y1, width, last_ix, last_iy;
+  __m256 x0, y0, x1, y1, width, last_ix, last_iy, off_limit;
   __m256i row;
-  const float* values;
+  const float* origin;  // originOf(map)
 };
 
 template <bool kBilinear>
@@ -173,20 +189,22 @@ TLC_AVX2 inline __m256 distanceAvx2(const Avx2Projection& q, const Avx2Map& mv) 
   if constexpr (kBilinear) {
     const __m256 cu = _mm256_min_ps(_mm256_max_ps(q.u, mv.x0), mv.x1);
     const __m256 cv = _mm256_min_ps(_mm256_max_ps(q.v, mv.y0), mv.y1);
-    const __m256 fx = _mm256_sub_ps(cu, mv.x0), fy = _mm256_sub_ps(cv, mv.y0);
-    const __m256 ix = _mm256_min_ps(_mm256_floor_ps(fx), mv.last_ix);
-    const __m256 iy = _mm256_min_ps(_mm256_floor_ps(fy), mv.last_iy);
-    const __m256 ax = _mm256_sub_ps(fx, ix), ay = _mm256_sub_ps(fy, iy);
+    const __m256 ix = _mm256_min_ps(_mm256_floor_ps(cu), mv.last_ix);
+    const __m256 iy = _mm256_min_ps(_mm256_floor_ps(cv), mv.last_iy);
+    const __m256 ax = _mm256_sub_ps(cu, ix), ay = _mm256_sub_ps(cv, iy);
+    // Exact in float: pixel indices stay below 2^24 (LossEvaluator checks the image size).
     const __m256i index = _mm256_cvttps_epi32(_mm256_fmadd_ps(iy, mv.width, ix));
     const __m256i below = _mm256_add_epi32(index, mv.row);
-    const __m256 v00 = _mm256_i32gather_ps(mv.values, index, 4);
-    const __m256 v01 = _mm256_i32gather_ps(mv.values + 1, index, 4);
-    const __m256 v10 = _mm256_i32gather_ps(mv.values, below, 4);
-    const __m256 v11 = _mm256_i32gather_ps(mv.values + 1, below, 4);
+    const __m256 v00 = _mm256_i32gather_ps(mv.origin, index, 4);
+    const __m256 v01 = _mm256_i32gather_ps(mv.origin + 1, index, 4);
+    const __m256 v10 = _mm256_i32gather_ps(mv.origin, below, 4);
+    const __m256 v11 = _mm256_i32gather_ps(mv.origin + 1, below, 4);
     const __m256 top = _mm256_fmadd_ps(ax, _mm256_sub_ps(v01, v00), v00);
     const __m256 bottom = _mm256_fmadd_ps(ax, _mm256_sub_ps(v11, v10), v10);
-    const __m256 off = _mm256_add_ps(_mm256_and_ps(_mm256_sub_ps(q.u, cu), abs_mask),
-                                     _mm256_and_ps(_mm256_sub_ps(q.v, cv), abs_mask));
+    const __m256 off = _mm256_min_ps(
+        _mm256_add_ps(_mm256_and_ps(_mm256_sub_ps(q.u, cu), abs_mask),
+                      _mm256_and_ps(_mm256_sub_ps(q.v, cv), abs_mask)),
+        mv.off_limit);
     return _mm256_add_ps(off, _mm256_fmadd_ps(ay, _mm256_sub_ps(bottom, top), top));
   } else {
     const __m256 half = _mm256_set1_ps(0.5f);
@@ -194,12 +212,13 @@ TLC_AVX2 inline __m256 distanceAvx2(const Avx2Projection& q, const Avx2Map& mv) 
     const __m256 rv = _mm256_floor_ps(_mm256_add_ps(q.v, half));
     const __m256 cu = _mm256_min_ps(_mm256_max_ps(ru, mv.x0), mv.x1);
     const __m256 cv = _mm256_min_ps(_mm256_max_ps(rv, mv.y0), mv.y1);
-    // Exact in float: crop indices stay far below 2^24.
-    const __m256i index = _mm256_cvttps_epi32(
-        _mm256_fmadd_ps(_mm256_sub_ps(cv, mv.y0), mv.width, _mm256_sub_ps(cu, mv.x0)));
-    const __m256 off = _mm256_add_ps(_mm256_and_ps(_mm256_sub_ps(ru, cu), abs_mask),
-                                     _mm256_and_ps(_mm256_sub_ps(rv, cv), abs_mask));
-    return _mm256_add_ps(off, _mm256_i32gather_ps(mv.values, index, 4));
+    // Exact in float: pixel indices stay below 2^24 (LossEvaluator checks the image size).
+    const __m256i index = _mm256_cvttps_epi32(_mm256_fmadd_ps(cv, mv.width, cu));
+    const __m256 off = _mm256_min_ps(
+        _mm256_add_ps(_mm256_and_ps(_mm256_sub_ps(ru, cu), abs_mask),
+                      _mm256_and_ps(_mm256_sub_ps(rv, cv), abs_mask)),
+        mv.off_limit);
+    return _mm256_add_ps(off, _mm256_i32gather_ps(mv.origin, index, 4));
   }
 }
 
@@ -213,10 +232,11 @@ TLC_AVX2 float sumAvx2(const float* mp, const Lens& lens, const Points& p, const
                    _mm256_set1_ps(map.x1),
                    _mm256_set1_ps(map.y1),
                    _mm256_set1_ps(static_cast<float>(map.width)),
-                   _mm256_set1_ps(map.x1 - map.x0 - 1.0f),  // the crop is at least 2x2
-                   _mm256_set1_ps(map.y1 - map.y0 - 1.0f),
+                   _mm256_set1_ps(map.x1 - 1.0f),  // the crop is at least 2x2
+                   _mm256_set1_ps(map.y1 - 1.0f),
+                   _mm256_set1_ps(kOffLimit),
                    _mm256_set1_epi32(map.width),
-                   map.values};
+                   originOf(map)};
   const __m256 pen = _mm256_set1_ps(penalty);
   __m256 acc = _mm256_setzero_ps();
   const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);

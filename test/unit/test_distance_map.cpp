@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 using thermal_lidar_calibration::DistanceMap;
@@ -59,6 +60,24 @@ TEST(DistanceMap, BilinearIsExactAtCentresAndLinearBetween) {
   EXPECT_FLOAT_EQ(map.bilinear(12.25f, 10.0f), 2.75f);
   EXPECT_FLOAT_EQ(map.bilinear(-3.5f, 10.0f), 18.5f);  // off the image, still exact L1
   EXPECT_FLOAT_EQ(map.bilinear(15.0f, 13.5f), 3.5f);
+}
+
+TEST(DistanceMap, FarAwayAndNaNProjectionsCostTheCapPlusTheBoxValue) {
+  // z -> 0+ projects to infinity (or NaN when x = 0 too): the distance outside the box is capped,
+  // NaN clamps to the box corner, and the result stays finite.
+  cv::Mat mask = cv::Mat::zeros(20, 30, CV_8UC1);
+  mask.at<std::uint8_t>(10, 15) = 1;
+  const DistanceMap map(mask);
+  const float cap = DistanceMap::kOffBoxCap;
+  const float inf = std::numeric_limits<float>::infinity();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const int right = map.x0() + map.width() - 1;
+  EXPECT_EQ(map.nearest(1e7f, 10.0f), cap + map.atPixel(right, 10));
+  EXPECT_EQ(map.nearest(inf, 10.0f), cap + map.atPixel(right, 10));
+  EXPECT_EQ(map.nearest(nan, nan), cap + map.atPixel(map.x0(), map.y0()));
+  EXPECT_EQ(map.bilinear(-inf, 10.0f), cap + map.atPixel(map.x0(), 10));
+  EXPECT_EQ(map.bilinear(nan, nan), cap + map.atPixel(map.x0(), map.y0()));
+  EXPECT_EQ(map.nearest(-5.2f, 10.0f), 20.0f);  // below the cap nothing changes
 }
 
 TEST(DistanceMap, RejectsAMaskWithoutPeople) {

@@ -117,6 +117,22 @@ TEST(Loss, RejectsAMaskThatDisagreesWithTheCamera) {
   EXPECT_THROW(LossEvaluator(smallCamera(), {p}, LossConfig{}), std::invalid_argument);
 }
 
+TEST(Loss, RejectsImagesTooLargeForTheKernelsFloatIndices) {
+  // 4096 x 4096 = 2^24 pixels: float pixel indices would no longer be exact.
+  const CameraModel huge = CameraModel::fromK(4096, 4096, {1000, 0, 2048, 0, 1000, 2048, 0, 0, 1}, {});
+  CalibrationPair p;
+  p.mask = cv::Mat::zeros(4096, 4096, CV_8UC1);
+  p.mask.at<std::uint8_t>(10, 10) = 1;
+  p.points = {{0, 0, 1}};
+  p.labels = {1};
+  try {
+    LossEvaluator loss(huge, {p}, LossConfig{});
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("4096x4096"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Loss, InsideFractionCountsPointsLandingInTheImage) {
   const LossEvaluator loss(smallCamera(), {pairWith({{0, 0, 1}, {5, 0, 1}, {0, 0, -1}, {0.1f, 0.1f, 1}})},
                            LossConfig{});

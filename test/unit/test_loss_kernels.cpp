@@ -88,3 +88,56 @@ TEST(LossKernels, RadialOnlyLensPathIsBitIdenticalToTheFullFormula) {
   EXPECT_EQ(kernels::countInside(m, true, full, points, 640, 512),
             kernels::countInside(m, true, radial, points, 640, 512));
 }
+
+TEST(LossKernels, ProjectionsAtTheCameraPlaneCostTheCapOrThePenaltyInEveryKernel) {
+  // Z -> 0+ makes u, v infinite, or NaN when X = 0 too (0 * inf). Such a point must still cost
+  // a finite amount (the 2e6 px cap plus the map value at the box corner it is clamped to), in
+  // the vector code and the portable code alike; Z <= 0 costs the penalty.
+  const KernelData d;
+  const kernels::MapView view = d.view();
+  const float pinhole[12] = {772, 0, 322, 0, 0, 772, 250, 0, 0, 0, 1, 0};  // K [I | 0]
+  const float extrinsic[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+  const kernels::Lens lens{772.41f, 772.83f, 322.67f, 250.66f, 0.0f, -0.0496f, 0.3632f, 0.001f, -0.002f, 0.01f};
+  const float cap = 2e6f, penalty = 3200.0f;
+  const float diagonal = view.x1 - view.x0 + view.y1 - view.y0;  // bounds any map value
+  struct Case {
+    float x, y, z;
+    bool behind;
+  };
+  const Case cases[] = {{1, 1, 0.0f, true},        {1, 1, -1e-42f, true},  {1, -1, 1e-42f, false},
+                        {0, 0, 1e-42f, false},     {-1, 1, 1e-30f, false}, {0, 3, 1e-39f, false}};
+  for (const Case& c : cases) {
+    std::vector<float> x(8, 0.0f), y(8, 0.0f), z(8, 0.0f);
+    x[0] = c.x;
+    y[0] = c.y;
+    z[0] = c.z;
+    const kernels::Points one{x.data(), y.data(), z.data(), 1};
+    const std::string what = "point (" + std::to_string(c.x) + ", " + std::to_string(c.y) + ", " +
+                             std::to_string(c.z) + ")";
+    for (int distorted = 0; distorted < 2; ++distorted) {
+      for (int bilinear = 0; bilinear < 2; ++bilinear) {
+        const float* m = distorted ? extrinsic : pinhole;
+        const float scalar = kernels::sumPsiScalar(m, distorted, bilinear, lens, one, view, penalty);
+        float vector = 0.0f;
+        if (bilinear) {
+          vector = distorted ? kernels::sumPsiBilinearDistorted(m, lens, one, view, penalty)
+                             : kernels::sumPsiBilinearPinhole(m, one, view, penalty);
+        } else {
+          vector = distorted ? kernels::sumPsiNearestDistorted(m, lens, one, view, penalty)
+                             : kernels::sumPsiNearestPinhole(m, one, view, penalty);
+        }
+        SCOPED_TRACE(what + (distorted ? ", distorted" : ", pinhole") +
+                     (bilinear ? ", bilinear" : ", nearest"));
+        EXPECT_EQ(scalar, vector);
+        if (c.behind) {
+          EXPECT_EQ(vector, penalty);
+        } else {
+          EXPECT_GE(vector, cap);
+          EXPECT_LE(vector, cap + diagonal);
+        }
+        EXPECT_EQ(kernels::countInside(m, distorted, lens, one, 640, 512), 0);
+        EXPECT_EQ(kernels::countInsideScalar(m, distorted, lens, one, 640, 512), 0);
+      }
+    }
+  }
+}

@@ -27,6 +27,11 @@ class DistanceMap {
   int height() const { return height_; }
   const float* data() const { return values_.data(); }  // row-major, width() x height()
 
+  // |p - clamp_B(p)|_1 is capped here: a projection with z -> 0+ can be infinite (or NaN, which
+  // clamps to the box corner and costs the cap), and 2e6 px already costs far more than the
+  // behind-camera penalty at its default. The loss kernels use the same cap.
+  static constexpr float kOffBoxCap = 2e6f;
+
   // Exact integer L1 distance for pixel (u, v) anywhere (inside the image or not).
   float atPixel(int u, int v) const;
   // "nearest" pixel rule (the paper's): round (u, v) to the nearest pixel centre, then exact L1.
