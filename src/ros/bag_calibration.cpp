@@ -188,6 +188,18 @@ int runCalibrateBag(const CalibrateBagOptions& options) {
   context.source = options.bag;
   for (const auto& pair : builder.pairs()) context.pair_stamps_s.push_back(pair.stamp_s);
   context.parameters = params;
+  if (truth) {
+    TruthComparison cmp;
+    cmp.truth_file = options.truth;
+    cmp.rotation_error_rad = rotationErrorRad(result.extrinsic, *truth);
+    cmp.translation_error_m = translationErrorM(result.extrinsic, *truth);
+    LossConfig loss_config;
+    loss_config.behind_camera_penalty_c1 = params.calibration.behind_camera_penalty_c1;
+    loss_config.pixel_rule = PixelRule::kNearest;
+    const LossEvaluator evaluator(camera, builder.pairs(), loss_config);
+    cmp.truth_loss = evaluator.loss(*truth, inlierIndices(result));
+    context.truth = cmp;
+  }
   writeResultFile(options.output, result, context);
 
   SummaryInput summary;
@@ -200,17 +212,7 @@ int runCalibrateBag(const CalibrateBagOptions& options) {
   summary.frames = stats.frames;
   summary.counts = builder.counts();
   summary.result = result;
-  if (truth) {
-    TruthComparison cmp;
-    cmp.rotation_error_rad = rotationErrorRad(result.extrinsic, *truth);
-    cmp.translation_error_m = translationErrorM(result.extrinsic, *truth);
-    LossConfig loss_config;
-    loss_config.behind_camera_penalty_c1 = params.calibration.behind_camera_penalty_c1;
-    loss_config.pixel_rule = PixelRule::kNearest;
-    const LossEvaluator evaluator(camera, builder.pairs(), loss_config);
-    cmp.truth_loss = evaluator.loss(*truth, inlierIndices(result));
-    summary.truth = cmp;
-  }
+  summary.truth = context.truth;
   summary.total_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!options.quiet || result.stopped) {

@@ -114,6 +114,15 @@ void writeResultFile(const std::string& path, const CalibrationResult& result,
   out << YAML::Key << "points_projected" << YAML::Value << result.points_projected;
   out << YAML::Key << "source" << YAML::Value << context.source;
   out << YAML::Key << "created" << YAML::Value << utcNow();
+  if (context.truth) {
+    const TruthComparison& t = *context.truth;
+    out << YAML::Key << "truth" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "file" << YAML::Value << t.truth_file;
+    out << YAML::Key << "rotation_error_deg" << YAML::Value << t.rotation_error_rad * 180.0 / M_PI;
+    out << YAML::Key << "translation_error_m" << YAML::Value << t.translation_error_m;
+    out << YAML::Key << "loss" << YAML::Value << t.truth_loss;
+    out << YAML::EndMap;
+  }
 
   out << YAML::Key << "pairs" << YAML::Value << YAML::BeginSeq;
   const std::size_t n = std::max(result.pair_losses.size(), result.inliers.size());

@@ -248,6 +248,13 @@ TEST_F(CalibrateBagCli, CalibratesASyntheticBag) {
       Eigen::AngleAxisd(R.transpose() * tlc_cli_test::truthRotation()).angle() * 180.0 / M_PI;
   EXPECT_LT(angle_deg, 1.0);
   EXPECT_LT((t_vec - tlc_cli_test::truthTranslation()).norm(), 0.10);
+  // --truth also goes into the result file, so scripts need not parse the summary.
+  ASSERT_TRUE(y["truth"]) << "no truth block";
+  EXPECT_EQ(y["truth"]["file"].as<std::string>(), truth);
+  EXPECT_NEAR(y["truth"]["rotation_error_deg"].as<double>(), angle_deg, 1e-6);
+  EXPECT_NEAR(y["truth"]["translation_error_m"].as<double>(),
+              (t_vec - tlc_cli_test::truthTranslation()).norm(), 1e-6);
+  EXPECT_GE(y["truth"]["loss"].as<double>(), 0.0);
 }
 
 TEST_F(CalibrateBagCli, NonFinitePointsAreDroppedNotAnError) {

@@ -53,6 +53,7 @@ TEST(ResultFile, HasEveryInterfaceKeyAndRoundTrips) {
   writeResultFile(path, r, ctx);
 
   const YAML::Node y = YAML::LoadFile(path);
+  EXPECT_FALSE(y["truth"]) << "a truth block without --truth";
   for (const char* key : {"lidar_frame", "camera_frame", "rotation_vector", "translation",
                           "rotation_matrix", "quaternion_xyzw", "loss", "pairs_used",
                           "pairs_collected", "loss_bilinear", "evolution", "pairs", "parameters",

@@ -3,18 +3,13 @@
 
 #include "thermal_lidar_calibration/core/calibrator.hpp"
 #include "thermal_lidar_calibration/core/frame_gate.hpp"
+#include "thermal_lidar_calibration/ros/result_file.hpp"
 
 #include <optional>
 #include <string>
 
 namespace thermal_lidar_calibration {
 namespace ros_io {
-
-struct TruthComparison {
-  double rotation_error_rad = 0.0;
-  double translation_error_m = 0.0;
-  double truth_loss = 0.0;  // Eq. (3), nearest rule, on the pairs the result used
-};
 
 struct SummaryInput {
   std::string bag_path;

@@ -5,11 +5,20 @@
 #include "thermal_lidar_calibration/core/calibrator.hpp"
 #include "thermal_lidar_calibration/ros/parameters.hpp"
 
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace thermal_lidar_calibration {
 namespace ros_io {
+
+// The result against a known truth (calibrate_bag --truth, synthetic bags).
+struct TruthComparison {
+  std::string truth_file;
+  double rotation_error_rad = 0.0;
+  double translation_error_m = 0.0;
+  double truth_loss = 0.0;  // Eq. (3), nearest rule, on the pairs the result used
+};
 
 struct ResultContext {
   std::string lidar_frame;
@@ -17,6 +26,7 @@ struct ResultContext {
   std::string source;                  // bag path or "live"
   std::vector<double> pair_stamps_s;   // one per collected pair, same order as the result
   CoreParameters parameters;
+  std::optional<TruthComparison> truth;  // written as a `truth:` block when set
 };
 
 // Throws std::runtime_error if the file cannot be written (says the path and the reason).
