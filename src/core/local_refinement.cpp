@@ -7,13 +7,21 @@ namespace {
 
 using Vector6 = Eigen::Matrix<double, 6, 1>;
 
-Vector6 toVector(const Extrinsic& e) {
+// The search runs on (r, s) with s = R pivot + t, the camera-frame position of the pivot (the
+// data's centroid), instead of (r, t): a rotation then turns the cloud about its own centre
+// rather than about the LiDAR, which is metres away, so rotation and translation steps no
+// longer undo each other along a long diagonal valley.
+Vector6 toVector(const Extrinsic& e, const Eigen::Vector3d& pivot) {
   Vector6 v;
-  v << e.rotation_vector, e.translation;
+  v << e.rotation_vector, e.rotationMatrix() * pivot + e.translation;
   return v;
 }
 
-Extrinsic fromVector(const Vector6& v) { return Extrinsic{v.head<3>(), v.tail<3>()}; }
+Extrinsic fromVector(const Vector6& v, const Eigen::Vector3d& pivot) {
+  Extrinsic e{v.head<3>(), Eigen::Vector3d::Zero()};
+  e.translation = v.tail<3>() - e.rotationMatrix() * pivot;
+  return e;
+}
 
 }  // namespace
 
@@ -25,7 +33,8 @@ LocalRefinement::LocalRefinement(const LossEvaluator& loss, RefineConfig config,
 RefineOutcome LocalRefinement::run(const Extrinsic& start, const std::vector<std::size_t>& pairs,
                                    const RefineCallback& callback) const {
   RefineOutcome out;
-  Vector6 x = toVector(start);
+  const Eigen::Vector3d pivot = loss_.centroid(pairs);
+  Vector6 x = toVector(start, pivot);
   Vector6 step;
   step << Eigen::Vector3d::Constant(config_.initial_step_rot_rad),
       Eigen::Vector3d::Constant(config_.initial_step_trans_m);
@@ -37,7 +46,7 @@ RefineOutcome LocalRefinement::run(const Extrinsic& start, const std::vector<std
     loss_.lossBatch(candidates, pairs, losses, threads_);
     out.evaluations += candidates.size();
   };
-  evaluate({fromVector(x)});
+  evaluate({fromVector(x, pivot)});
   double fx = losses[0];
 
   // A pattern search along the parameter axes can stall in a valley that runs diagonally
@@ -67,7 +76,7 @@ RefineOutcome LocalRefinement::run(const Extrinsic& start, const std::vector<std
       for (double sign : {1.0, -1.0}) {
         Vector6 y = x;
         y[k] += sign * step[k];
-        probes.push_back(fromVector(y));
+        probes.push_back(fromVector(y, pivot));
       }
     }
     evaluate(probes);
@@ -89,8 +98,8 @@ RefineOutcome LocalRefinement::run(const Extrinsic& start, const std::vector<std
     } else {
       // Take the better of the best single probe and the move along every improving axis, then
       // keep moving in that direction while it pays (the pattern move of Hooke-Jeeves).
-      Vector6 direction = toVector(probes[best_probe]) - x;
-      evaluate({fromVector(x + combined)});
+      Vector6 direction = toVector(probes[best_probe], pivot) - x;
+      evaluate({fromVector(x + combined, pivot)});
       if (losses[0] < best_loss) {
         best_loss = losses[0];
         direction = combined;
@@ -98,18 +107,18 @@ RefineOutcome LocalRefinement::run(const Extrinsic& start, const std::vector<std
       x += direction;
       fx = best_loss;
       while (static_cast<int>(out.evaluations) < config_.max_evaluations) {
-        evaluate({fromVector(x + direction)});
+        evaluate({fromVector(x + direction, pivot)});
         if (!(losses[0] < fx)) break;
         x += direction;
         fx = losses[0];
       }
     }
-    if (callback && !callback(out.iterations, fx, fromVector(x), out.evaluations)) {
+    if (callback && !callback(out.iterations, fx, fromVector(x, pivot), out.evaluations)) {
       out.stopped = true;
       break;
     }
   }
-  out.best = fromVector(x);
+  out.best = fromVector(x, pivot);
   out.loss = fx;
   return out;
 }

@@ -151,6 +151,21 @@ bool LossEvaluator::maskTouchesImageBorder(std::size_t pair) const {
          d.y0() + d.height() >= camera_.height;
 }
 
+Eigen::Vector3d LossEvaluator::centroid(const std::vector<std::size_t>& pairs) const {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double count = 0.0;
+  const auto add = [&](const PreparedPair& p) {
+    sum += p.centre * static_cast<double>(p.count);
+    count += static_cast<double>(p.count);
+  };
+  if (pairs.empty()) {
+    for (const PreparedPair& p : impl_->pairs) add(p);
+  } else {
+    for (std::size_t i : pairs) add(impl_->pairs.at(i));
+  }
+  return count > 0.0 ? Eigen::Vector3d(sum / count) : Eigen::Vector3d::Zero();
+}
+
 double LossEvaluator::pairLoss(std::size_t pair, const Extrinsic& extrinsic) const {
   impl_->points += impl_->pairs.at(pair).count;
   return impl_->pairLoss(impl_->paramsOf(extrinsic), pair, config_.pixel_rule);

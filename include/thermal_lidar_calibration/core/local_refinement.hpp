@@ -3,7 +3,9 @@
 // its mutation step of the loss minimum. This derivative-free pattern search (Hooke-Jeeves style:
 // +-step probes on each of the six parameters, a combined move along every improving axis, step
 // halving when nothing improves) converges to the minimum of the sub-pixel (bilinear) loss, which
-// unlike the nearest-pixel loss is continuous and so does not stall the search.
+// unlike the nearest-pixel loss is continuous and so does not stall the search. It searches
+// over the rotation and the camera-frame position of the data's centroid rather than over
+// (r, t), so that rotation and translation steps do not undo each other (see the .cpp).
 
 #include "thermal_lidar_calibration/core/calibration_config.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"

@@ -52,6 +52,8 @@ class LossEvaluator {
   // True when pair i's people touch the image border: the mask shows only part of someone the
   // LiDAR cluster holds whole, so some of the pair's points have no counterpart in the mask.
   bool maskTouchesImageBorder(std::size_t pair) const;
+  // Mean of the LiDAR points of the given pairs (all pairs when empty), in the LiDAR frame.
+  Eigen::Vector3d centroid(const std::vector<std::size_t>& pairs) const;
   const CameraModel& camera() const { return camera_; }
   const LossConfig& config() const { return config_; }
 

@@ -1,0 +1,80 @@
+// The local refinement (beyond the paper) must reach the minimum of the sub-pixel loss from any
+// start near it, including starts along the valley where a rotation and a translation undo each
+// other (turning the camera about the LiDAR while shifting it back): a search that stalls
+// there ends at a different loss, and a different pose, for every seed.
+#include "thermal_lidar_calibration/core/local_refinement.hpp"
+
+#include "../support/synthetic_pairs.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+using namespace thermal_lidar_calibration;
+using test_support::fieldsafeCamera;
+using test_support::fieldsafeTruth;
+
+namespace {
+constexpr double kDeg = M_PI / 180.0;
+
+// The truth turned by `angle` about the camera's vertical axis, around the point `pivot` (LiDAR
+// frame): pivot's image stays where it was, everything else slides sideways.
+Extrinsic turnedAbout(const Extrinsic& e, double angle, const Eigen::Vector3d& pivot) {
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const Eigen::Matrix3d R = turn * e.rotationMatrix();
+  const Eigen::Vector3d pivot_camera = e.rotationMatrix() * pivot + e.translation;
+  return Extrinsic{matrixToRodrigues(R), pivot_camera - R * pivot};
+}
+}  // namespace
+
+TEST(LocalRefinement, ReachesOneMinimumFromStartsAlongTheRotationTranslationValley) {
+  test_support::SyntheticPairsOptions o;
+  o.pairs = 30;
+  o.seed = 8;
+  const auto data = test_support::makeSyntheticPairs(fieldsafeCamera(), fieldsafeTruth(), o);
+  const LossEvaluator bilinear(fieldsafeCamera(), data, LossConfig{5.0, PixelRule::kBilinear});
+  std::vector<std::size_t> all(data.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  const LocalRefinement refinement(bilinear, RefineConfig{}, 1);
+
+  const Extrinsic truth = fieldsafeTruth();
+  const Eigen::Vector3d centre = bilinear.centroid(all);
+  Extrinsic shifted = truth;
+  shifted.translation += Eigen::Vector3d(0.03, -0.02, 0.04);
+  const std::vector<Extrinsic> starts{truth,
+                                      shifted,
+                                      turnedAbout(truth, 0.3 * kDeg, Eigen::Vector3d::Zero()),
+                                      turnedAbout(truth, -0.3 * kDeg, Eigen::Vector3d::Zero()),
+                                      turnedAbout(truth, 0.5 * kDeg, centre),
+                                      turnedAbout(truth, -0.5 * kDeg, centre)};
+  std::vector<double> losses;
+  for (const Extrinsic& start : starts) {
+    const RefineOutcome out = refinement.run(start, all);
+    EXPECT_TRUE(out.converged);
+    EXPECT_LE(out.loss, bilinear.loss(start));
+    EXPECT_LT(rotationErrorRad(out.best, truth), 0.1 * kDeg);
+    EXPECT_LT(translationErrorM(out.best, truth), 0.02);
+    losses.push_back(out.loss);
+  }
+  const auto [lo, hi] = std::minmax_element(losses.begin(), losses.end());
+  // One minimum: the final losses (~0.01 px) agree to 2 % (1.1e-4 measured; a search on (r, t)
+  // that stalls in the valley spreads them by 4e-4).
+  EXPECT_LT(*hi - *lo, 2e-4) << "final losses from " << *lo << " to " << *hi;
+}
+
+TEST(LossEvaluator, CentroidIsThePointWeightedMeanOfThePairs) {
+  std::vector<CalibrationPair> data(2);
+  for (auto& p : data) {
+    p.mask = cv::Mat::zeros(512, 640, CV_8UC1);
+    p.mask.at<std::uint8_t>(100, 100) = 1;
+  }
+  data[0].points = {{0, 0, 1}, {2, 0, 1}};  // centre (1, 0, 1)
+  data[1].points = {{4, 4, 4}};
+  for (auto& p : data) p.labels.assign(p.points.size(), 1);
+  const LossEvaluator loss(fieldsafeCamera(), data, LossConfig{});
+  EXPECT_TRUE(loss.centroid({0}).isApprox(Eigen::Vector3d(1, 0, 1)));
+  EXPECT_TRUE(loss.centroid({}).isApprox(Eigen::Vector3d(2, 4.0 / 3.0, 2)));
+  EXPECT_TRUE(loss.centroid({0, 1}).isApprox(loss.centroid({})));
+}
