@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <numeric>
 #include <stdexcept>
 
@@ -119,6 +120,13 @@ CalibrationResult calibrate(const CameraModel& camera, const std::vector<Calibra
     // border are left out of the re-selection (refine.exclude_truncated).
     const std::vector<std::size_t> candidates =
         refinementCandidates(nearest, config.refine.exclude_truncated);
+    if (!config.refine.reselect_inliers) {
+      // One refinement on Algorithm 2's inliers, less the excluded pairs.
+      std::vector<std::size_t> kept;
+      std::set_intersection(used.begin(), used.end(), candidates.begin(), candidates.end(),
+                            std::back_inserter(kept));
+      if (!kept.empty()) used = kept;
+    }
     constexpr int kMaxInlierRounds = 5;
     for (int round = 1; round <= kMaxInlierRounds; ++round) {
       evaluations_before_stage = result.evaluations;
@@ -130,7 +138,7 @@ CalibrationResult calibrate(const CameraModel& camera, const std::vector<Calibra
       result.extrinsic = refined.best;
       result.evaluations += refined.evaluations;
       result.stopped = refined.stopped;
-      if (result.stopped) break;
+      if (result.stopped || !config.refine.reselect_inliers) break;
       const std::vector<std::size_t> reselected =
           selectInliers(nearest, result.extrinsic, config.outlier.threshold_px, candidates);
       if (reselected == used) break;

@@ -28,6 +28,7 @@ const std::vector<std::string>& coreKeys() {
       "outlier_iterations", "ratio_solution", "threshold_sample_px",
       "refine_initial_step_rot_rad", "refine_initial_step_trans_m", "refine_min_step_rot_rad",
       "refine_min_step_trans_m", "refine_max_evaluations", "refine_exclude_truncated",
+      "refine_reselect_inliers",
       "max_people", "skip_frames", "min_points_per_cluster", "sync_slop", "sync_queue_size",
       "pairs_required"};
   return keys;
@@ -163,6 +164,7 @@ CoreParameters loadCoreParameters(const ParameterSource& source) {
   readDoubleParameter(source, "refine_min_step_trans_m", 0.0, true, 10.0, r.min_step_trans_m);
   readIntParameter(source, "refine_max_evaluations", 1, 100000000, r.max_evaluations);
   readBoolParameter(source, "refine_exclude_truncated", r.exclude_truncated);
+  readBoolParameter(source, "refine_reselect_inliers", r.reselect_inliers);
 
   readIntParameter(source, "max_people", 1, 1000, p.gate.max_people);
   readIntParameter(source, "skip_frames", 0, 100000, p.gate.skip_frames);
@@ -212,6 +214,7 @@ std::vector<std::pair<std::string, std::string>> describeCoreParameters(const Co
       {"refine_min_step_trans_m", d(r.min_step_trans_m)},
       {"refine_max_evaluations", i(r.max_evaluations)},
       {"refine_exclude_truncated", r.exclude_truncated ? "true" : "false"},
+      {"refine_reselect_inliers", r.reselect_inliers ? "true" : "false"},
       {"max_people", i(p.gate.max_people)},
       {"skip_frames", i(p.gate.skip_frames)},
       {"min_points_per_cluster", i(p.gate.min_points_per_cluster)},

@@ -138,7 +138,7 @@ TEST(Parameters, UnknownKeysAreReported) {
 
 TEST(Parameters, DescribeListsEveryCoreKeyOnce) {
   const auto described = describeCoreParameters(CoreParameters{});
-  EXPECT_EQ(described.size(), 33u);
+  EXPECT_EQ(described.size(), 34u);
   for (const auto& kv : described) {
     const auto& known = knownParameterKeys();
     EXPECT_NE(std::find(known.begin(), known.end(), kv.first), known.end()) << kv.first;

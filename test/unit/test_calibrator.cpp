@@ -79,6 +79,14 @@ TEST(Calibrate, RefinementReselectsInliersAndDropsMismatchedPairs) {
   EXPECT_GE(r.pairs_used, 18u);  // 30 - 4 mismatched - those with people cut by the border
   EXPECT_LT(rotationErrorRad(r.extrinsic, fieldsafeTruth()), 0.2 * kDeg);
   EXPECT_LT(translationErrorM(r.extrinsic, fieldsafeTruth()), 0.03);
+  config.refine.reselect_inliers = false;  // one refinement on what Algorithm 1 used: all pairs
+  const CalibrationResult once = calibrate(fieldsafeCamera(), data, config);
+  int mismatched_kept = 0;
+  for (int i : swapped) mismatched_kept += once.inliers[i] ? 1 : 0;
+  EXPECT_GT(mismatched_kept, 0);
+  EXPECT_GT(translationErrorM(once.extrinsic, fieldsafeTruth()),
+            translationErrorM(r.extrinsic, fieldsafeTruth()));
+  config.refine.reselect_inliers = true;
   config.refine.mode = RefineMode::kNone;  // the paper's Algorithm 1 keeps them all
   const CalibrationResult plain = calibrate(fieldsafeCamera(), data, config);
   EXPECT_EQ(plain.pairs_used, data.size());

@@ -51,6 +51,9 @@ struct RefineConfig {
   // Leave out pairs whose people touch the image border (truncated masks) while at least half
   // of the pairs remain: their off-image LiDAR points bias the result.
   bool exclude_truncated = true;
+  // After each refinement, re-select the inliers among all pairs with Eq. (1) <= threshold_sample
+  // and refine again until the set is stable; false refines once on Algorithm 2's inliers.
+  bool reselect_inliers = true;
   void validate() const;
 };
 
