@@ -109,8 +109,8 @@ CalibrationResult calibrate(const CameraModel& camera, const std::vector<Calibra
   result.evolution_loss = nearest.loss(fit.best, used);
   result.extrinsic = fit.best;
 
+  const LossEvaluator bilinear = nearest.withPixelRule(PixelRule::kBilinear);
   if (config.refine.mode == RefineMode::kLocal && !result.stopped) {
-    const LossEvaluator bilinear = nearest.withPixelRule(PixelRule::kBilinear);
     const LocalRefinement refinement(bilinear, config.refine, config.num_threads);
     // Algorithm 2 can keep a mismatched pair (equal counts, different people) when neither of
     // its subset fits is accepted; one such pair pulls the optimum by decimetres. So the
@@ -155,7 +155,7 @@ CalibrationResult calibrate(const CameraModel& camera, const std::vector<Calibra
       matrixToRodrigues(result.evolution_extrinsic.rotationMatrix());
   result.pairs_used = used.size();
   result.loss = nearest.loss(result.extrinsic, used);
-  result.loss_bilinear = nearest.withPixelRule(PixelRule::kBilinear).loss(result.extrinsic, used);
+  result.loss_bilinear = bilinear.loss(result.extrinsic, used);
   result.pair_losses.resize(pairs.size());
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     result.pair_losses[i] = nearest.pairLoss(i, result.extrinsic);

@@ -1,6 +1,9 @@
 #include "thermal_lidar_calibration/core/distance_map.hpp"
 
+#include "float_ops.hpp"
+
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -8,37 +11,17 @@
 #include <stdexcept>
 
 namespace thermal_lidar_calibration {
-namespace {
-
-// max/min with the semantics of the vector instructions the loss kernels use (the second
-// operand when either is NaN), so a NaN coordinate clamps into the box as it does there.
-float maxps(float a, float b) { return a > b ? a : b; }
-float minps(float a, float b) { return a < b ? a : b; }
-float clampps(float x, float lo, float hi) { return minps(maxps(x, lo), hi); }
-
-}  // namespace
 
 DistanceMap::DistanceMap(const cv::Mat& mask) {
   if (mask.empty() || mask.type() != CV_8UC1) {
     throw std::invalid_argument("distance map: needs a non-empty CV_8UC1 binary mask");
   }
-  image_width_ = mask.cols;
-  image_height_ = mask.rows;
-  int min_x = image_width_, min_y = image_height_, max_x = -1, max_y = -1;
-  for (int v = 0; v < mask.rows; ++v) {
-    const std::uint8_t* row = mask.ptr<std::uint8_t>(v);
-    for (int u = 0; u < mask.cols; ++u) {
-      if (row[u]) {
-        min_x = std::min(min_x, u);
-        max_x = std::max(max_x, u);
-        min_y = std::min(min_y, v);
-        max_y = std::max(max_y, v);
-      }
-    }
-  }
-  if (max_x < 0) {
+  const cv::Rect people = cv::boundingRect(mask);  // box of the non-zero pixels
+  if (people.empty()) {
     throw std::invalid_argument("distance map: the person mask has no person pixel");
   }
+  const int min_x = people.x, min_y = people.y;
+  int max_x = people.x + people.width - 1, max_y = people.y + people.height - 1;
   // The bilinear rule reads a 2x2 neighbourhood, so the box is at least 2x2. Any box that holds
   // every person pixel gives exact distances, even one reaching past the image border.
   if (max_x == min_x) ++max_x;

@@ -1,12 +1,13 @@
 #include "thermal_lidar_calibration/core/evolutionary_optimizer.hpp"
 
+#include "threads.hpp"
+
 #include <omp.h>
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 namespace thermal_lidar_calibration {
 namespace {
@@ -19,10 +20,6 @@ constexpr std::size_t kMaxDrawsPerIndividual = 2000;
 
 std::size_t fractionOf(double fraction, std::size_t n) {
   return static_cast<std::size_t>(std::floor(fraction * static_cast<double>(n) + 1e-9));
-}
-
-int teamSize(int threads) {
-  return threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
 void sortByLoss(std::vector<Individual>& population) {
@@ -70,7 +67,7 @@ std::vector<Individual> EvolutionaryOptimizer::initialPopulation(
       for (int k = 0; k < 3; ++k) ind.r[k] = rng.uniform(-ri, ri);
     }
     draws += kDrawBatch;
-#pragma omp parallel for schedule(static) num_threads(teamSize(threads_))
+#pragma omp parallel for schedule(static) num_threads(resolveThreads(threads_))
     for (int i = 0; i < static_cast<int>(kDrawBatch); ++i) {
       accepted[i] = loss_.somePairInside(pairs, batch[i].extrinsic(), config_.min_inside_fraction);
     }

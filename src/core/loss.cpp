@@ -1,6 +1,7 @@
 #include "thermal_lidar_calibration/core/loss.hpp"
 
 #include "loss_kernels.hpp"
+#include "threads.hpp"
 
 #include <omp.h>
 
@@ -11,15 +12,14 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 namespace thermal_lidar_calibration {
 namespace {
 
 using Params = std::array<float, 12>;
 
-// Candidates swept together over one pair's points before moving to the next pair, so the
-// pair's points and distance map stay in cache.
+// At most this many candidates are swept together over one pair's points before the next
+// pair, so the pair's points and distance map stay in cache.
 constexpr std::size_t kCandidateBlock = 16;
 
 kernels::MapView viewOf(const DistanceMap& d) {
@@ -63,10 +63,11 @@ struct LossEvaluator::Impl {
   mutable std::atomic<std::uint64_t> points{0};
 
   // Fold K into [R | t] when there is no distortion: one mat-vec and one reciprocal per point.
-  Params paramsOf(const Extrinsic& e) const {
+  Params paramsOf(const Extrinsic& e) const { return paramsOf(e.rotationMatrix(), e.translation); }
+  Params paramsOf(const Eigen::Matrix3d& R, const Eigen::Vector3d& t) const {
     Eigen::Matrix<double, 3, 4> m;
-    m.leftCols<3>() = e.rotationMatrix();
-    m.col(3) = e.translation;
+    m.leftCols<3>() = R;
+    m.col(3) = t;
     if (!distorted) m = K * m;
     Params out;
     for (int r = 0; r < 3; ++r) {
@@ -75,20 +76,16 @@ struct LossEvaluator::Impl {
     return out;
   }
 
-  float sumPsi(const Params& m, const PreparedPair& pair, PixelRule rule) const {
-    const kernels::MapView map = viewOf(pair.distance);
-    const kernels::Points pts = pointsOf(pair);
-    if (rule == PixelRule::kNearest) {
-      return distorted ? kernels::sumPsiNearestDistorted(m.data(), lens, pts, map, penalty)
-                       : kernels::sumPsiNearestPinhole(m.data(), pts, map, penalty);
-    }
-    return distorted ? kernels::sumPsiBilinearDistorted(m.data(), lens, pts, map, penalty)
-                     : kernels::sumPsiBilinearPinhole(m.data(), pts, map, penalty);
+  // Eq. (1): the mean psi over the pair's points.
+  double pairLoss(const Params& m, const PreparedPair& pair, const kernels::MapView& map,
+                  const kernels::Points& pts, PixelRule rule) const {
+    const float sum = kernels::sumPsi(m.data(), distorted, rule == PixelRule::kBilinear, lens, pts,
+                                      map, penalty);
+    return static_cast<double>(sum) / static_cast<double>(pair.count);
   }
-
   double pairLoss(const Params& m, std::size_t i, PixelRule rule) const {
     const PreparedPair& pair = pairs[i];
-    return static_cast<double>(sumPsi(m, pair, rule)) / static_cast<double>(pair.count);
+    return pairLoss(m, pair, viewOf(pair.distance), pointsOf(pair), rule);
   }
 };
 
@@ -196,20 +193,27 @@ void LossEvaluator::lossBatch(const std::vector<Extrinsic>& candidates,
   std::vector<Params> params(n);
   for (std::size_t c = 0; c < n; ++c) params[c] = impl_->paramsOf(candidates[c]);
 
-  const int blocks = static_cast<int>((n + kCandidateBlock - 1) / kCandidateBlock);
-  int team = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  // Small batches (the refinement's 12 probes) are split into smaller blocks so that every
+  // thread gets some; large ones use whole blocks.
+  int team = resolveThreads(threads);
+  const std::size_t per_thread = (n + static_cast<std::size_t>(team) - 1) / static_cast<std::size_t>(team);
+  const std::size_t block = std::clamp<std::size_t>(per_thread, 1, kCandidateBlock);
+  const int blocks = static_cast<int>((n + block - 1) / block);
   team = std::max(1, std::min(team, blocks));
   const PixelRule rule = config_.pixel_rule;
   const double pair_count = static_cast<double>(pairs->size());
 #pragma omp parallel for schedule(dynamic, 1) num_threads(team)
   for (int b = 0; b < blocks; ++b) {
-    const std::size_t begin = static_cast<std::size_t>(b) * kCandidateBlock;
-    const std::size_t end = std::min(n, begin + kCandidateBlock);
+    const std::size_t begin = static_cast<std::size_t>(b) * block;
+    const std::size_t end = std::min(n, begin + block);
     std::array<double, kCandidateBlock> sums{};
     // Each candidate's sum runs over the pairs in the same order in any block or thread.
     for (std::size_t pi : *pairs) {
+      const PreparedPair& pair = impl_->pairs[pi];
+      const kernels::MapView map = viewOf(pair.distance);
+      const kernels::Points pts = pointsOf(pair);
       for (std::size_t c = begin; c < end; ++c) {
-        sums[c - begin] += impl_->pairLoss(params[c], pi, rule);
+        sums[c - begin] += impl_->pairLoss(params[c], pair, map, pts, rule);
       }
     }
     for (std::size_t c = begin; c < end; ++c) out[c] = sums[c - begin] / pair_count;
@@ -229,8 +233,8 @@ double LossEvaluator::insideFraction(std::size_t pair, const Extrinsic& extrinsi
 
 bool LossEvaluator::somePairInside(const std::vector<std::size_t>& pairs,
                                    const Extrinsic& extrinsic, double fraction) const {
-  const Params m = impl_->paramsOf(extrinsic);
   const Eigen::Matrix3d R = extrinsic.rotationMatrix();
+  const Params m = impl_->paramsOf(R, extrinsic.translation);
   for (std::size_t i : pairs) {
     const PreparedPair& p = impl_->pairs.at(i);
     // Camera-frame depth of the sphere's centre; if even its nearest point is not in front, no

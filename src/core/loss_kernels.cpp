@@ -6,6 +6,8 @@
 
 #include "loss_kernels.hpp"
 
+#include "float_ops.hpp"
+
 #include "thermal_lidar_calibration/core/distance_map.hpp"
 
 #include <algorithm>
@@ -31,12 +33,6 @@ constexpr float kOffLimit = DistanceMap::kOffBoxCap;
 // r^2 is clamped before the lens polynomial so it stays finite (and NaN becomes the limit):
 // |x|, |y| up to 1e4, i.e. 89.99 degrees off the axis, far outside any image.
 constexpr float kRadiusSquaredLimit = 2e8f;
-
-// The exact semantics of the SSE/AVX max and min instructions (the second operand when either
-// is NaN), so the scalar code treats NaN exactly as the vector code does.
-inline float maxps(float a, float b) { return a > b ? a : b; }
-inline float minps(float a, float b) { return a < b ? a : b; }
-inline float clampps(float x, float lo, float hi) { return minps(maxps(x, lo), hi); }
 
 // The map's values addressed by absolute pixel index v * width + u: saves two subtractions per
 // point. Computed on integers, only ever dereferenced inside the crop.
@@ -297,22 +293,14 @@ float sum(const float* m, const Lens& lens, const Points& p, const MapView& map,
 
 }  // namespace
 
-float sumPsiNearestPinhole(const float* m, const Points& p, const MapView& map, float penalty) {
-  return sum<false, false>(m, kNoLens, p, map, penalty);
-}
-
-float sumPsiNearestDistorted(const float* m, const Lens& lens, const Points& p,
-                             const MapView& map, float penalty) {
-  return sum<true, false>(m, lens, p, map, penalty);
-}
-
-float sumPsiBilinearPinhole(const float* m, const Points& p, const MapView& map, float penalty) {
-  return sum<false, true>(m, kNoLens, p, map, penalty);
-}
-
-float sumPsiBilinearDistorted(const float* m, const Lens& lens, const Points& p,
-                              const MapView& map, float penalty) {
-  return sum<true, true>(m, lens, p, map, penalty);
+float sumPsi(const float* m, bool distorted, bool bilinear, const Lens& lens, const Points& p,
+             const MapView& map, float penalty) {
+  if (distorted) {
+    return bilinear ? sum<true, true>(m, lens, p, map, penalty)
+                    : sum<true, false>(m, lens, p, map, penalty);
+  }
+  return bilinear ? sum<false, true>(m, kNoLens, p, map, penalty)
+                  : sum<false, false>(m, kNoLens, p, map, penalty);
 }
 
 int countInside(const float* m, bool distorted, const Lens& lens, const Points& p, int width,
@@ -323,8 +311,7 @@ int countInside(const float* m, bool distorted, const Lens& lens, const Points& 
                      : countInsideAvx2<false>(m, kNoLens, p, width, height);
   }
 #endif
-  return distorted ? countInsideScalarImpl<true>(m, lens, p, width, height)
-                   : countInsideScalarImpl<false>(m, kNoLens, p, width, height);
+  return countInsideScalar(m, distorted, lens, p, width, height);
 }
 
 float sumPsiScalar(const float* m, bool distorted, bool bilinear, const Lens& lens,

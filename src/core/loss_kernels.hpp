@@ -32,12 +32,10 @@ struct Points {
   int count;
 };
 
-float sumPsiNearestPinhole(const float* m, const Points& p, const MapView& map, float penalty);
-float sumPsiNearestDistorted(const float* m, const Lens& lens, const Points& p, const MapView& map,
-                             float penalty);
-float sumPsiBilinearPinhole(const float* m, const Points& p, const MapView& map, float penalty);
-float sumPsiBilinearDistorted(const float* m, const Lens& lens, const Points& p,
-                              const MapView& map, float penalty);
+// Sum of psi over the points, with the nearest or the bilinear pixel rule; `lens` is read only
+// when `distorted`.
+float sumPsi(const float* m, bool distorted, bool bilinear, const Lens& lens, const Points& p,
+             const MapView& map, float penalty);
 
 // Points in front of the camera whose nearest pixel lies inside a width x height image.
 int countInside(const float* m, bool distorted, const Lens& lens, const Points& p, int width,

@@ -61,13 +61,13 @@ TEST(LossKernels, PortableFallbackAgreesWithTheDispatchedCode) {
     EXPECT_NEAR(a, b, pixels + 1e-5f * std::fabs(b));
   };
   near(kernels::sumPsiScalar(pinhole, false, false, lens, pts, view, 3200.0f),
-       kernels::sumPsiNearestPinhole(pinhole, pts, view, 3200.0f), 2.0f);
+       kernels::sumPsi(pinhole, false, false, lens, pts, view, 3200.0f), 2.0f);
   near(kernels::sumPsiScalar(pinhole, false, true, lens, pts, view, 3200.0f),
-       kernels::sumPsiBilinearPinhole(pinhole, pts, view, 3200.0f), 0.05f);
+       kernels::sumPsi(pinhole, false, true, lens, pts, view, 3200.0f), 0.05f);
   near(kernels::sumPsiScalar(m, true, false, lens, pts, view, 3200.0f),
-       kernels::sumPsiNearestDistorted(m, lens, pts, view, 3200.0f), 2.0f);
+       kernels::sumPsi(m, true, false, lens, pts, view, 3200.0f), 2.0f);
   near(kernels::sumPsiScalar(m, true, true, lens, pts, view, 3200.0f),
-       kernels::sumPsiBilinearDistorted(m, lens, pts, view, 3200.0f), 0.05f);
+       kernels::sumPsi(m, true, true, lens, pts, view, 3200.0f), 0.05f);
   EXPECT_NEAR(kernels::countInsideScalar(m, true, lens, pts, 640, 512),
               kernels::countInside(m, true, lens, pts, 640, 512), 1);
   EXPECT_GT(kernels::countInside(m, true, lens, pts, 640, 512), 0);  // the data reaches the image
@@ -81,10 +81,10 @@ TEST(LossKernels, RadialOnlyLensPathIsBitIdenticalToTheFullFormula) {
   kernels::Lens full{772.41f, 772.83f, 322.67f, 250.66f, 0.0f, -0.0496f, 0.3632f, 0.0f, 0.0f, 0.01f};
   kernels::Lens radial = full;
   radial.radial_only = true;
-  EXPECT_EQ(kernels::sumPsiNearestDistorted(m, full, points, view, 3200.0f),
-            kernels::sumPsiNearestDistorted(m, radial, points, view, 3200.0f));
-  EXPECT_EQ(kernels::sumPsiBilinearDistorted(m, full, points, view, 3200.0f),
-            kernels::sumPsiBilinearDistorted(m, radial, points, view, 3200.0f));
+  EXPECT_EQ(kernels::sumPsi(m, true, false, full, points, view, 3200.0f),
+            kernels::sumPsi(m, true, false, radial, points, view, 3200.0f));
+  EXPECT_EQ(kernels::sumPsi(m, true, true, full, points, view, 3200.0f),
+            kernels::sumPsi(m, true, true, radial, points, view, 3200.0f));
   EXPECT_EQ(kernels::countInside(m, true, full, points, 640, 512),
             kernels::countInside(m, true, radial, points, 640, 512));
 }
@@ -118,14 +118,7 @@ TEST(LossKernels, ProjectionsAtTheCameraPlaneCostTheCapOrThePenaltyInEveryKernel
       for (int bilinear = 0; bilinear < 2; ++bilinear) {
         const float* m = distorted ? extrinsic : pinhole;
         const float scalar = kernels::sumPsiScalar(m, distorted, bilinear, lens, one, view, penalty);
-        float vector = 0.0f;
-        if (bilinear) {
-          vector = distorted ? kernels::sumPsiBilinearDistorted(m, lens, one, view, penalty)
-                             : kernels::sumPsiBilinearPinhole(m, one, view, penalty);
-        } else {
-          vector = distorted ? kernels::sumPsiNearestDistorted(m, lens, one, view, penalty)
-                             : kernels::sumPsiNearestPinhole(m, one, view, penalty);
-        }
+        const float vector = kernels::sumPsi(m, distorted, bilinear, lens, one, view, penalty);
         SCOPED_TRACE(what + (distorted ? ", distorted" : ", pinhole") +
                      (bilinear ? ", bilinear" : ", nearest"));
         EXPECT_EQ(scalar, vector);

@@ -18,8 +18,6 @@ class DistanceMap {
   // binary_mask: CV_8UC1, non-zero = person. Throws std::invalid_argument without person pixels.
   explicit DistanceMap(const cv::Mat& binary_mask);
 
-  int imageWidth() const { return image_width_; }
-  int imageHeight() const { return image_height_; }
   // Crop box in image pixels: columns [x0, x0 + width), rows [y0, y0 + height).
   int x0() const { return x0_; }
   int y0() const { return y0_; }
@@ -41,7 +39,6 @@ class DistanceMap {
   float bilinear(float u, float v) const;
 
  private:
-  int image_width_ = 0, image_height_ = 0;
   int x0_ = 0, y0_ = 0, width_ = 0, height_ = 0;
   std::vector<float> values_;
 };
