@@ -38,7 +38,6 @@ class NodeHandleParameterSource : public ParameterSource {
     if (!get(key, v) || v.getType() != XmlRpc::XmlRpcValue::TypeBoolean) return std::nullopt;
     return static_cast<bool>(v);
   }
-  std::string describe() const override { return "node " + nh_.getNamespace(); }
 
  private:
   bool get(const std::string& key, XmlRpc::XmlRpcValue& v) const {

@@ -2,6 +2,7 @@
 // defaults from the core structs, per-key type and range checks, then the core validate().
 
 #include "thermal_lidar_calibration/ros/parameters.hpp"
+#include "thermal_lidar_calibration/ros/node_parameters.hpp"
 #include "thermal_lidar_calibration/ros/parameter_readers.hpp"
 #include "thermal_lidar_calibration/ros/unknown_parameters.hpp"
 #include "thermal_lidar_calibration/ros/yaml_file.hpp"
@@ -19,18 +20,11 @@ namespace thermal_lidar_calibration {
 namespace ros_io {
 namespace {
 
-const std::vector<std::string>& coreKeys() {
-  static const std::vector<std::string> keys = {
-      "algorithm", "refine", "seed", "num_threads", "population_size", "max_iterations",
-      "rotation_interval_rad", "translation_interval_m", "elite_fraction", "crossover_fraction",
-      "initial_population_factor", "sigma_rot_rad", "sigma_trans_m", "min_inside_fraction",
-      "behind_camera_penalty_c1", "min_sample_large", "min_sample_small", "min_sample_switch",
-      "outlier_iterations", "ratio_solution", "threshold_sample_px",
-      "refine_initial_step_rot_rad", "refine_initial_step_trans_m", "refine_min_step_rot_rad",
-      "refine_min_step_trans_m", "refine_max_evaluations", "refine_exclude_truncated",
-      "refine_reselect_inliers",
-      "max_people", "skip_frames", "min_points_per_cluster", "sync_slop", "sync_queue_size",
-      "pairs_required"};
+// The keys of a describe*Parameters() list, in its order.
+std::vector<std::string> keysOf(const std::vector<std::pair<std::string, std::string>>& described) {
+  std::vector<std::string> keys;
+  keys.reserve(described.size());
+  for (const auto& kv : described) keys.push_back(kv.first);
   return keys;
 }
 
@@ -38,8 +32,7 @@ const std::vector<std::string>& coreKeys() {
 // YAML-backed source (the --config file, same format as config/default.yaml).
 class YamlParameterSource : public ParameterSource {
  public:
-  YamlParameterSource(YAML::Node root, std::string path)
-      : root_(std::move(root)), path_(std::move(path)) {}
+  explicit YamlParameterSource(YAML::Node root) : root_(std::move(root)) {}
 
   bool has(const std::string& key) const override {
     const YAML::Node n = node(key);
@@ -59,7 +52,6 @@ class YamlParameterSource : public ParameterSource {
   std::optional<bool> getBool(const std::string& key) const override {
     return convert<bool>(key);
   }
-  std::string describe() const override { return "file " + path_; }
 
  private:
   YAML::Node node(const std::string& key) const {
@@ -78,7 +70,6 @@ class YamlParameterSource : public ParameterSource {
   }
 
   YAML::Node root_;
-  std::string path_;
 };
 
 YAML::Node loadYamlMap(const std::string& path) {
@@ -94,7 +85,7 @@ YAML::Node loadYamlMap(const std::string& path) {
 }  // namespace
 
 std::unique_ptr<ParameterSource> makeYamlParameterSource(const std::string& path) {
-  return std::make_unique<YamlParameterSource>(loadYamlMap(path), path);
+  return std::make_unique<YamlParameterSource>(loadYamlMap(path));
 }
 
 std::vector<std::string> yamlFileKeys(const std::string& path) {
@@ -225,14 +216,11 @@ std::vector<std::pair<std::string, std::string>> describeCoreParameters(const Co
 }
 
 const std::vector<std::string>& knownParameterKeys() {
+  // The describe functions list every key once, core keys first, in the order of the tables.
   static const std::vector<std::string> keys = [] {
-    std::vector<std::string> k = coreKeys();
-    for (const char* node_key :
-         {"output_file", "dataset_bag", "resume", "camera_info_file", "child_frame",
-          "min_pairs_to_calibrate", "progress_log_period_s", "status_rate_hz", "tf_check_wait_s",
-          "overlay_max_points"}) {
-      k.emplace_back(node_key);
-    }
+    std::vector<std::string> k = keysOf(describeCoreParameters(CoreParameters{}));
+    const std::vector<std::string> node_keys = keysOf(describeNodeParameters(NodeParameters{}));
+    k.insert(k.end(), node_keys.begin(), node_keys.end());
     return k;
   }();
   return keys;

@@ -1,6 +1,7 @@
 // The parameter table: defaults = Table 1, overrides from YAML, and the error messages.
 
 #include "thermal_lidar_calibration/ros/parameters.hpp"
+#include "thermal_lidar_calibration/ros/node_parameters.hpp"
 #include "thermal_lidar_calibration/ros/unknown_parameters.hpp"
 
 #include <gtest/gtest.h>
@@ -143,4 +144,14 @@ TEST(Parameters, DescribeListsEveryCoreKeyOnce) {
     const auto& known = knownParameterKeys();
     EXPECT_NE(std::find(known.begin(), known.end(), kv.first), known.end()) << kv.first;
   }
+}
+
+TEST(Parameters, KnownKeysAreTheDescribedKeysEachOnce) {
+  std::vector<std::string> described;
+  for (const auto& kv : describeCoreParameters(CoreParameters{})) described.push_back(kv.first);
+  for (const auto& kv : describeNodeParameters(NodeParameters{})) described.push_back(kv.first);
+  EXPECT_EQ(knownParameterKeys(), described);
+  std::vector<std::string> sorted = knownParameterKeys();
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end());
 }

@@ -31,7 +31,8 @@ struct NodeParameters {
 
 // Reads ~ parameters of `private_nh`. Throws std::invalid_argument on any invalid value.
 NodeParameters loadNodeParameters(const ros::NodeHandle& private_nh);
-// "key: value" for every node-only key (the core keys come from describeCoreParameters).
+// "key: value" for every node-only key (the core keys come from describeCoreParameters). Its
+// keys are also the node-only part of knownParameterKeys().
 std::vector<std::pair<std::string, std::string>> describeNodeParameters(const NodeParameters& p);
 
 }  // namespace ros_io

@@ -34,7 +34,6 @@ class ParameterSource {
   virtual std::optional<long long> getInt(const std::string& key) const = 0;  // rejects 1.5
   virtual std::optional<std::string> getString(const std::string& key) const = 0;
   virtual std::optional<bool> getBool(const std::string& key) const = 0;
-  virtual std::string describe() const = 0;  // "file params.yaml" / "node /calibration_node"
 };
 
 // Throws std::invalid_argument on a bad file (missing, not YAML, not a map).
@@ -44,7 +43,8 @@ CoreParameters loadCoreParameters(const ParameterSource& source);
 // Every core key with its effective value, one "key: value" per line (for the start-up log
 // and the result file).
 std::vector<std::pair<std::string, std::string>> describeCoreParameters(const CoreParameters& p);
-// All keys this package knows (core and node-only), to warn about typos in a --config file.
+// All keys this package knows (core and node-only), to warn about typos in a --config file:
+// the keys of describeCoreParameters() then describeNodeParameters(), in their order.
 const std::vector<std::string>& knownParameterKeys();
 
 }  // namespace ros_io
