@@ -37,6 +37,28 @@ void fillCloudHeader(sensor_msgs::PointCloud2& cloud, std::size_t n, std::uint32
 
 bool finite(const Eigen::Vector3f& p) { return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z()); }
 
+// x, y, z (FLOAT32 at 0, 4, 8) and one 4-byte field `name` at 12: point_step 16. The caller has
+// checked that `extra` has one value per point.
+template <typename T>
+sensor_msgs::PointCloud2 encodeXyzPlusField(const std::vector<Eigen::Vector3f>& points,
+                                            const std::vector<T>& extra, const std::string& name,
+                                            std::uint8_t datatype, const std::string& frame_id,
+                                            double stamp_s) {
+  static_assert(sizeof(T) == 4, "the extra field is 4 bytes at offset 12");
+  sensor_msgs::PointCloud2 cloud;
+  cloud.fields = {field("x", 0, sensor_msgs::PointField::FLOAT32), field("y", 4, sensor_msgs::PointField::FLOAT32),
+                  field("z", 8, sensor_msgs::PointField::FLOAT32), field(name, 12, datatype)};
+  fillCloudHeader(cloud, points.size(), 16, frame_id, stamp_s);
+  cloud.is_dense = true;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    std::uint8_t* p = &cloud.data[i * 16];
+    std::memcpy(p, points[i].data(), 12);
+    std::memcpy(p + 12, &extra[i], 4);
+    if (!finite(points[i])) cloud.is_dense = false;
+  }
+  return cloud;
+}
+
 }  // namespace
 
 sensor_msgs::Image encodeMonoImage(const cv::Mat& mat, const std::string& frame_id, double stamp_s) {
@@ -65,18 +87,7 @@ sensor_msgs::PointCloud2 encodeClusters(const std::vector<Eigen::Vector3f>& poin
     throw std::invalid_argument("encodeClusters: " + std::to_string(points.size()) + " points but " +
                                 std::to_string(labels.size()) + " labels");
   }
-  sensor_msgs::PointCloud2 cloud;
-  cloud.fields = {field("x", 0, sensor_msgs::PointField::FLOAT32), field("y", 4, sensor_msgs::PointField::FLOAT32),
-                  field("z", 8, sensor_msgs::PointField::FLOAT32), field("label", 12, sensor_msgs::PointField::INT32)};
-  fillCloudHeader(cloud, points.size(), 16, frame_id, stamp_s);
-  cloud.is_dense = true;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    std::uint8_t* p = &cloud.data[i * 16];
-    std::memcpy(p, points[i].data(), 12);
-    std::memcpy(p + 12, &labels[i], 4);
-    if (!finite(points[i])) cloud.is_dense = false;
-  }
-  return cloud;
+  return encodeXyzPlusField(points, labels, "label", sensor_msgs::PointField::INT32, frame_id, stamp_s);
 }
 
 sensor_msgs::PointCloud2 encodePointsWithIntensity(const std::vector<Eigen::Vector3f>& points,
@@ -86,19 +97,8 @@ sensor_msgs::PointCloud2 encodePointsWithIntensity(const std::vector<Eigen::Vect
     throw std::invalid_argument("encodePointsWithIntensity: " + std::to_string(points.size()) + " points but " +
                                 std::to_string(intensity.size()) + " intensities");
   }
-  sensor_msgs::PointCloud2 cloud;
-  cloud.fields = {field("x", 0, sensor_msgs::PointField::FLOAT32), field("y", 4, sensor_msgs::PointField::FLOAT32),
-                  field("z", 8, sensor_msgs::PointField::FLOAT32),
-                  field("intensity", 12, sensor_msgs::PointField::FLOAT32)};
-  fillCloudHeader(cloud, points.size(), 16, frame_id, stamp_s);
-  cloud.is_dense = true;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    std::uint8_t* p = &cloud.data[i * 16];
-    std::memcpy(p, points[i].data(), 12);
-    std::memcpy(p + 12, &intensity[i], 4);
-    if (!finite(points[i])) cloud.is_dense = false;
-  }
-  return cloud;
+  return encodeXyzPlusField(points, intensity, "intensity", sensor_msgs::PointField::FLOAT32, frame_id,
+                            stamp_s);
 }
 
 sensor_msgs::CameraInfo cameraInfoFromModel(const CameraModel& camera) {
