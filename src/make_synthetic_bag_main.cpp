@@ -2,8 +2,10 @@
 // bag (LZ4) with the INTERFACE topics, and writes the true extrinsic to a YAML truth file.
 // Bad arguments: one-line error on stderr, exit 2. Other failures: exit 1.
 
+#include "thermal_lidar_calibration/ros/calibrate_bag_options.hpp"
 #include "thermal_lidar_calibration/ros/calibrated_tf_publisher.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
+#include "thermal_lidar_calibration/ros/result_file.hpp"
 #include "thermal_lidar_calibration/synthetic/synthetic_rig.hpp"
 
 #include <geometry_msgs/TransformStamped.h>
@@ -27,10 +29,9 @@
 namespace syn = thermal_lidar_calibration::synthetic;
 namespace ros_io = thermal_lidar_calibration::ros_io;
 using thermal_lidar_calibration::Extrinsic;
+using thermal_lidar_calibration::ros_io::UsageError;
 
 namespace {
-
-constexpr int kDefaultFrames = 1200;  // ~60-75 gated pairs with the FieldSAFE-like rig
 
 const char* kUsage =
     "Usage: make_synthetic_bag --output OUT.bag [options]\n"
@@ -62,12 +63,18 @@ const char* kUsage =
     "  --camera-frame F         default thermal_optical\n"
     "  --help                   this text\n";
 
+// The rig's own defaults (frame count, frame rate), which the command line starts from.
+const syn::SyntheticConfig& defaultConfig() {
+  static const syn::SyntheticConfig config;
+  return config;
+}
+
 struct Options {
   std::string output;
   std::string truth;
   std::string rig = "fieldsafe";
   std::uint64_t seed = 1;
-  int frames = kDefaultFrames;
+  int frames = defaultConfig().frames;
   int people = 0;
   std::string noise = "clean";
   double range_noise_m = -1, miss_rate = -1, false_cluster_rate = -1, false_mask_rate = -1;
@@ -80,10 +87,6 @@ struct Options {
   double time_jitter_s = 0.0;
   std::string lidar_frame = "velodyne";
   std::string camera_frame = "thermal_optical";
-};
-
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
 };
 
 double parseDouble(const std::string& flag, const std::string& text, double lo, double hi) {
@@ -148,7 +151,9 @@ Options parseArgs(const std::vector<std::string>& args, bool* help) {
       o.frames = static_cast<int>(parseInt(a, value(), 1, 100000));
       frames_set = true;
     } else if (a == "--duration") {
-      o.frames = std::max(1, static_cast<int>(std::lround(parseDouble(a, value(), 0.1, 10000.0) * 10.0)));
+      const double seconds = parseDouble(a, value(), 0.1, 10000.0);
+      // makeConfig keeps the default frame rate.
+      o.frames = std::max(1, static_cast<int>(std::lround(seconds * defaultConfig().frame_rate_hz)));
       duration_set = true;
     } else if (a == "--people") {
       o.people = static_cast<int>(parseInt(a, value(), 0, 250));
@@ -215,29 +220,14 @@ syn::SyntheticConfig makeConfig(const Options& o) {
 }
 
 void writeTruth(const Options& o, const syn::SyntheticRig& rig) {
-  const Extrinsic& truth = rig.config().rig.truth;
-  const Eigen::Matrix3d R = truth.rotationMatrix();
-  const Eigen::Quaterniond q = truth.quaternion();
   const syn::SyntheticConfig& c = rig.config();
-  auto seq = [](YAML::Emitter& out, std::initializer_list<double> values) {
-    out << YAML::Flow << YAML::BeginSeq;
-    for (double v : values) out << v;
-    out << YAML::EndSeq;
-  };
   YAML::Emitter out;
   out.SetDoublePrecision(15);
   out << YAML::Comment("Ground truth of a make_synthetic_bag run: p_C = R p_L + t (metres, radians)");
   out << YAML::BeginMap;
   out << YAML::Key << "lidar_frame" << YAML::Value << o.lidar_frame;
   out << YAML::Key << "camera_frame" << YAML::Value << o.camera_frame;
-  out << YAML::Key << "rotation_vector" << YAML::Value;
-  seq(out, {truth.rotation_vector.x(), truth.rotation_vector.y(), truth.rotation_vector.z()});
-  out << YAML::Key << "translation" << YAML::Value;
-  seq(out, {truth.translation.x(), truth.translation.y(), truth.translation.z()});
-  out << YAML::Key << "rotation_matrix" << YAML::Value;
-  seq(out, {R(0, 0), R(0, 1), R(0, 2), R(1, 0), R(1, 1), R(1, 2), R(2, 0), R(2, 1), R(2, 2)});
-  out << YAML::Key << "quaternion_xyzw" << YAML::Value;
-  seq(out, {q.x(), q.y(), q.z(), q.w()});
+  ros_io::emitExtrinsic(out, c.rig.truth);
   out << YAML::Key << "rig" << YAML::Value << c.rig.name;
   out << YAML::Key << "rig_description" << YAML::Value << c.rig.description;
   out << YAML::Key << "lidar_model" << YAML::Value << c.rig.lidar.name;
@@ -255,11 +245,10 @@ void writeTruth(const Options& o, const syn::SyntheticRig& rig) {
   const auto& cam = c.rig.camera;
   out << YAML::Key << "image_width" << YAML::Value << cam.width;
   out << YAML::Key << "image_height" << YAML::Value << cam.height;
-  out << YAML::Key << "camera_matrix" << YAML::Value;
-  seq(out, {cam.fx, cam.skew, cam.cx, 0.0, cam.fy, cam.cy, 0.0, 0.0, 1.0});
+  const double camera_matrix[9] = {cam.fx, cam.skew, cam.cx, 0.0, cam.fy, cam.cy, 0.0, 0.0, 1.0};
+  ros_io::emitVector(out, "camera_matrix", camera_matrix, 9);
   out << YAML::Key << "distortion_model" << YAML::Value << "plumb_bob";
-  out << YAML::Key << "distortion_coefficients" << YAML::Value;
-  seq(out, {cam.distortion[0], cam.distortion[1], cam.distortion[2], cam.distortion[3], cam.distortion[4]});
+  ros_io::emitVector(out, "distortion_coefficients", cam.distortion.data(), 5);
   out << YAML::Key << "bag" << YAML::Value << o.output;
   out << YAML::EndMap;
   std::ofstream file(o.truth);
@@ -365,7 +354,6 @@ int main(int argc, char** argv) {
       std::fputs(kUsage, stdout);
       return 0;
     }
-    makeConfig(options);  // noise preset / rig names
   } catch (const std::exception& e) {
     std::fprintf(stderr, "make_synthetic_bag: %s\n", e.what());
     return 2;

@@ -18,24 +18,6 @@ namespace thermal_lidar_calibration {
 namespace ros_io {
 namespace {
 
-void emitVector(YAML::Emitter& out, const std::string& key, const double* v, int n) {
-  out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
-  for (int i = 0; i < n; ++i) out << v[i];
-  out << YAML::EndSeq;
-}
-
-void emitExtrinsic(YAML::Emitter& out, const Extrinsic& e) {
-  emitVector(out, "rotation_vector", e.rotation_vector.data(), 3);
-  emitVector(out, "translation", e.translation.data(), 3);
-  const Eigen::Matrix3d R = e.rotationMatrix();
-  double r[9];
-  for (int i = 0; i < 9; ++i) r[i] = R(i / 3, i % 3);
-  emitVector(out, "rotation_matrix", r, 9);
-  const Eigen::Quaterniond q = e.quaternion();
-  const double xyzw[4] = {q.x(), q.y(), q.z(), q.w()};
-  emitVector(out, "quaternion_xyzw", xyzw, 4);
-}
-
 std::string utcNow() {
   const std::time_t now = std::time(nullptr);
   std::tm tm{};
@@ -84,6 +66,24 @@ std::vector<double> readNumbers(const YAML::Node& node, const std::string& key,
 }
 
 }  // namespace
+
+void emitVector(YAML::Emitter& out, const std::string& key, const double* v, int n) {
+  out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
+  for (int i = 0; i < n; ++i) out << v[i];
+  out << YAML::EndSeq;
+}
+
+void emitExtrinsic(YAML::Emitter& out, const Extrinsic& e) {
+  emitVector(out, "rotation_vector", e.rotation_vector.data(), 3);
+  emitVector(out, "translation", e.translation.data(), 3);
+  const Eigen::Matrix3d R = e.rotationMatrix();
+  double r[9];
+  for (int i = 0; i < 9; ++i) r[i] = R(i / 3, i % 3);
+  emitVector(out, "rotation_matrix", r, 9);
+  const Eigen::Quaterniond q = e.quaternion();
+  const double xyzw[4] = {q.x(), q.y(), q.z(), q.w()};
+  emitVector(out, "quaternion_xyzw", xyzw, 4);
+}
 
 void writeResultFile(const std::string& path, const CalibrationResult& result,
                      const ResultContext& context) {

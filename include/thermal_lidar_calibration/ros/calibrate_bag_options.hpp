@@ -27,7 +27,8 @@ struct CalibrateBagOptions {
   bool help = false;
 };
 
-// A command-line mistake: the tool prints it with the usage hint and exits with code 2.
+// A command-line mistake: the tool prints it (calibrate_bag with the usage hint) and exits with
+// code 2. make_synthetic_bag's argument parser throws it too.
 class UsageError : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;

@@ -9,6 +9,10 @@
 #include <string>
 #include <vector>
 
+namespace YAML {
+class Emitter;
+}  // namespace YAML
+
 namespace thermal_lidar_calibration {
 namespace ros_io {
 
@@ -34,6 +38,13 @@ void writeResultFile(const std::string& path, const CalibrationResult& result,
                      const ResultContext& context);
 // Reads rotation_vector (or rotation_matrix) and translation. Throws std::invalid_argument.
 Extrinsic readExtrinsicFile(const std::string& path);
+
+// Building blocks of the result file, shared with make_synthetic_bag's truth file. Both write
+// into a map the caller has opened; numbers use the caller's emitter precision.
+// `key: [v[0], ..., v[n-1]]` as a flow sequence.
+void emitVector(YAML::Emitter& out, const std::string& key, const double* v, int n);
+// rotation_vector, translation, rotation_matrix (row-major) and quaternion_xyzw, in that order.
+void emitExtrinsic(YAML::Emitter& out, const Extrinsic& e);
 
 }  // namespace ros_io
 }  // namespace thermal_lidar_calibration
