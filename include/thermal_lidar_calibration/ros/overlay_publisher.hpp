@@ -6,6 +6,7 @@
 
 #include "thermal_lidar_calibration/core/camera_model.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
+#include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 #include "thermal_lidar_calibration/ros/overlay_renderer.hpp"
 
 #include <image_transport/image_transport.h>
@@ -30,11 +31,16 @@ class OverlayPublisher {
   void setEstimate(const std::optional<Extrinsic>& estimate) { estimate_ = estimate; }
 
   void onImage(const sensor_msgs::Image::ConstPtr& image);  // renders and publishes
-  void onMask(const sensor_msgs::Image::ConstPtr& mask) { mask_msg_ = mask; }
-  void onClusters(const sensor_msgs::PointCloud2::ConstPtr& clusters) { clusters_msg_ = clusters; }
+  void onMask(const sensor_msgs::Image::ConstPtr& mask);
+  void onClusters(const sensor_msgs::PointCloud2::ConstPtr& clusters);
 
  private:
   void onCloud(const sensor_msgs::PointCloud2::ConstPtr& cloud);
+  // Decode the cached message once (on first use after it arrived); an undecodable message
+  // leaves the decoded value empty, as if it had not been received.
+  const cv::Mat& decodedMask();
+  const DecodedClusters& decodedClusters();
+  void decodeCloud();
 
   image_transport::ImageTransport it_;
   image_transport::Publisher publisher_;
@@ -44,7 +50,11 @@ class OverlayPublisher {
   std::unique_ptr<OverlayRenderer> renderer_;
   std::optional<Extrinsic> estimate_;
   sensor_msgs::Image::ConstPtr mask_msg_;
+  cv::Mat mask_;  // decoded mask_msg_ (empty if it could not be decoded)
+  bool mask_decoded_ = false;
   sensor_msgs::PointCloud2::ConstPtr clusters_msg_;
+  DecodedClusters clusters_;  // decoded clusters_msg_ (empty if it could not be decoded)
+  bool clusters_decoded_ = false;
   sensor_msgs::PointCloud2::ConstPtr cloud_msg_;
   std::vector<Eigen::Vector3f> cloud_points_;  // decoded cloud_msg_ (subsampled)
   bool cloud_decoded_ = false;
