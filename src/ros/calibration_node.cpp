@@ -15,9 +15,6 @@
 
 namespace thermal_lidar_calibration {
 namespace ros_io {
-namespace {
-constexpr double kFaultLogPeriodS = 5.0;
-}  // namespace
 
 const char* toString(NodeState state) {
   switch (state) {
@@ -118,9 +115,11 @@ void CalibrationNode::resumeDataset() {
     camera_info_msg_ = cameraInfoFromModel(*contents.camera);
     createBuilder(*contents.camera, params_.dataset_bag);
   }
-  for (auto& pair : contents.pairs) {
-    stored_stamps_ns_.insert(ros::Time(pair.stamp_s).toNSec());
-    builder_->addExistingPair(std::move(pair));  // throws if the camera size differs
+  for (std::size_t i = 0; i < contents.pairs.size(); ++i) {
+    // The exact header stamp, as onFrame keys live frames (not ros::Time(pair.stamp_s): a double
+    // at epoch times has ~240 ns resolution, so the nanoseconds would not round-trip).
+    stored_stamps_ns_.insert(static_cast<long long>(contents.pair_stamps_ns[i]));
+    builder_->addExistingPair(std::move(contents.pairs[i]));  // throws if the camera size differs
   }
   pairs_resumed_ = builder_->pairs().size();
   camera_frame_ = contents.camera_frame;
@@ -129,7 +128,6 @@ void CalibrationNode::resumeDataset() {
 }
 
 void CalibrationNode::createBuilder(const CameraModel& camera, const std::string& source) {
-  camera_ = camera;
   builder_ = std::make_unique<DatasetBuilder>(camera, params_.core.gate);
   overlay_->setCamera(camera);
   ROS_INFO("camera intrinsics from %s: %s", source.c_str(), camera.describe().c_str());
@@ -179,7 +177,6 @@ void CalibrationNode::onFrame(const sensor_msgs::Image::ConstPtr& image,
   const OfferOutcome outcome = builder_->offer([&] {
     return decodeFrame(*image, *mask, *clusters, image_topic_, mask_topic_, clusters_topic_);
   });
-  status_dirty_ = true;
   const std::uint64_t nonfinite = builder_->counts().nonfinite_points_dropped - nonfinite_before;
   if (nonfinite > 0) {
     ROS_WARN_THROTTLE(kFaultLogPeriodS, "%s: dropped %llu NaN/inf points of the cloud at %.3f (%llu so far)",
@@ -235,7 +232,7 @@ std::string CalibrationNode::startOptimization(const std::string& why) {
   result_stamps_s_.clear();
   for (const auto& pair : builder_->pairs()) result_stamps_s_.push_back(pair.stamp_s);
   discard_outcome_ = false;
-  worker_.start(*camera_, builder_->pairs(), params_.core.calibration);
+  worker_.start(builder_->camera(), builder_->pairs(), params_.core.calibration);
   logProgress(true);
   setState(NodeState::kOptimizing, "optimizing " + std::to_string(n) + " pairs (" + why + ")");
   ROS_INFO("optimizing %zu pairs on a worker thread (%s)", n, why.c_str());
@@ -292,7 +289,6 @@ void CalibrationNode::publishResult() {
            R(1, 1), R(1, 2), R(2, 0), R(2, 1), R(2, 2), t.x(), t.y(), t.z(), result_->loss,
            result_->pairs_used, result_->pairs_collected, result_->seconds,
            staticTransformPublisherCommand(msg).c_str());
-  status_dirty_ = true;
 }
 
 void CalibrationNode::writeResult() {

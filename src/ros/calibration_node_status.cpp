@@ -25,7 +25,6 @@ std::string CalibrationNode::progressLine() const {
 void CalibrationNode::setState(NodeState state, const std::string& message) {
   state_ = state;
   state_message_ = message;
-  status_dirty_ = true;
   publishStatus();
 }
 
@@ -94,7 +93,6 @@ void CalibrationNode::publishStatus() {
   msg.output_file = params_.output_file;
   msg.child_frame = result_ && result_published_ ? published_child_ : "";
   status_pub_.publish(msg);
-  status_dirty_ = false;
 }
 
 }  // namespace ros_io

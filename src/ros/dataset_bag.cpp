@@ -134,7 +134,6 @@ void DatasetBagWriter::write(const sensor_msgs::Image& image, const sensor_msgs:
   } catch (const rosbag::BagException& e) {
     fail(path_, e.what());
   }
-  ++pairs_written_;
 }
 
 void DatasetBagWriter::appendWithJournal(const sensor_msgs::Image& image,
@@ -190,7 +189,6 @@ void DatasetBagWriter::clear() {
     }
   }
   exists_ = false;
-  pairs_written_ = 0;
 }
 
 bool recoverDatasetBag(const std::string& path) {
@@ -265,6 +263,7 @@ DatasetBagContents readDatasetBag(const std::string& path) {
       contents.camera_frame = frame.camera_frame;
       contents.lidar_frame = frame.lidar_frame;
       contents.pairs.push_back(std::move(pair));
+      contents.pair_stamps_ns.push_back(image->header.stamp.toNSec());
     } catch (const std::invalid_argument& e) {
       contents.errors.push_back(e.what());
     }

@@ -4,6 +4,7 @@ restarted with ~resume:=true, and must finish with the pairs it had plus new one
 
 Runs under rostest (node_resume.test) with params ~work_dir and ~config_files.
 """
+import math
 import os
 import shutil
 import signal
@@ -12,6 +13,7 @@ import threading
 import time
 import unittest
 
+import rosbag
 import rospy
 import rostest
 import yaml
@@ -39,6 +41,39 @@ class Statuses:
                 self.first_after_start = msg
 
 
+# Real sensor stamps carry arbitrary nanoseconds; the generator's come from doubles and survive
+# toSec() -> ros::Time(double). Shifting them by a few ns (not a multiple of the ~238 ns spacing of
+# doubles near 1.6e9 s) makes them not round-trip, so ~resume must de-duplicate on exact stamps.
+STAMP_SHIFT_NS = 77
+SHIFTED_TOPICS = ("/thermal/image_raw", "/thermal/human_mask", "/lidar/human_clusters",
+                  "/thermal/camera_info")
+
+
+def cpp_time_round_trips(stamp):
+    """ros::Time(stamp.toSec()) == stamp, with roscpp's arithmetic (floor sec, round nsec)."""
+    t = float(stamp.secs) + 1e-9 * float(stamp.nsecs)
+    sec = math.floor(t)
+    nsec = int(math.floor((t - sec) * 1e9 + 0.5))
+    return (sec + nsec // 1000000000, nsec % 1000000000) == (stamp.secs, stamp.nsecs)
+
+
+def shift_stamps(src, dst):
+    """Copies bag src to dst with the frame topics' header stamps (and times) shifted."""
+    shift = rospy.Duration(0, STAMP_SHIFT_NS)
+    images = round_trips = 0
+    with rosbag.Bag(src) as inp, rosbag.Bag(dst, "w") as out:
+        # Keep each connection's header (a latched topic stays latched in the copy).
+        for topic, msg, t, header in inp.read_messages(return_connection_header=True):
+            if topic in SHIFTED_TOPICS:
+                msg.header.stamp = msg.header.stamp + shift
+                t = t + shift
+                if topic == SHIFTED_TOPICS[0]:
+                    images += 1
+                    round_trips += cpp_time_round_trips(msg.header.stamp)
+            out.write(topic, msg, t, connection_header=header)
+    return images, round_trips
+
+
 def wait_for(predicate, timeout_s):
     end = time.time() + timeout_s
     while time.time() < end and not rospy.is_shutdown():
@@ -53,11 +88,15 @@ class KillAndResume(unittest.TestCase):
         self.work = rospy.get_param("~work_dir")
         shutil.rmtree(self.work, ignore_errors=True)
         os.makedirs(self.work)
-        self.bag = os.path.join(self.work, "synthetic.bag")
+        generated = os.path.join(self.work, "generated.bag")
         with open(os.path.join(self.work, "generator.log"), "w") as log:
-            subprocess.run(["rosrun", PKG, "make_synthetic_bag", "--output", self.bag, "--truth",
+            subprocess.run(["rosrun", PKG, "make_synthetic_bag", "--output", generated, "--truth",
                             os.path.join(self.work, "truth.yaml"), "--frames", "300", "--seed", "11"],
                            check=True, stdout=log, stderr=subprocess.STDOUT)
+        self.bag = os.path.join(self.work, "synthetic.bag")
+        images, round_trips = shift_stamps(generated, self.bag)
+        self.assertGreater(images, 0)
+        self.assertEqual(round_trips, 0, "shifted image stamps still survive toSec()")
         for path in rospy.get_param("~config_files").split():
             with open(path) as f:
                 for key, value in (yaml.safe_load(f) or {}).items():

@@ -41,8 +41,10 @@ class CalibrationNode {
   ~CalibrationNode();
 
  private:
+  // Each distinct bad-frame fault is logged at most once per this period (fault_throttle_).
+  static constexpr double kFaultLogPeriodS = 5.0;
+
   void readParameters();
-  void setupCamera();
   void resumeDataset();
   void createBuilder(const CameraModel& camera, const std::string& source);
 
@@ -73,8 +75,7 @@ class CalibrationNode {
   NodeParameters params_;
   std::string image_topic_, mask_topic_, clusters_topic_, camera_info_topic_;
 
-  std::unique_ptr<DatasetBuilder> builder_;
-  std::optional<CameraModel> camera_;
+  std::unique_ptr<DatasetBuilder> builder_;  // holds the camera model once intrinsics are known
   std::optional<sensor_msgs::CameraInfo> camera_info_msg_;  // written with each pair
   std::unique_ptr<DatasetBagWriter> dataset_writer_;
   std::set<long long> stored_stamps_ns_;  // image stamps of pairs in the dataset (no duplicates)
@@ -102,9 +103,7 @@ class CalibrationNode {
   ros::WallTime start_time_;
   ros::WallTime last_progress_log_;
   std::uint64_t last_logged_considered_ = ~0ull;
-  std::uint64_t nonfinite_reported_ = 0;
-  bool status_dirty_ = true;
-  FaultThrottle fault_throttle_{5.0};
+  FaultThrottle fault_throttle_{kFaultLogPeriodS};
 };
 
 }  // namespace ros_io

@@ -18,6 +18,7 @@
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/PointCloud2.h>
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -50,7 +51,6 @@ class DatasetBagWriter {
   void clear();
 
   const std::string& path() const { return path_; }
-  std::size_t pairsWritten() const { return pairs_written_; }
 
  private:
   void appendWithJournal(const sensor_msgs::Image& image, const sensor_msgs::Image& mask,
@@ -58,7 +58,6 @@ class DatasetBagWriter {
                          const sensor_msgs::CameraInfo& camera_info);
   std::string path_;
   bool exists_ = false;
-  std::size_t pairs_written_ = 0;
 };
 
 // If "<path>.journal" exists (the process died during an append), restores the bag from it.
@@ -67,6 +66,9 @@ bool recoverDatasetBag(const std::string& path);
 
 struct DatasetBagContents {
   std::vector<CalibrationPair> pairs;   // masks binarised, people counted
+  // Exact image header stamps (ros::Time::toNSec) of `pairs`, index for index. pair.stamp_s is
+  // toSec(), which does not round-trip to nanoseconds at epoch times; de-duplicate on these.
+  std::vector<std::uint64_t> pair_stamps_ns;
   std::optional<CameraModel> camera;    // from the last camera_info in the bag
   std::string camera_frame, lidar_frame;
   std::vector<std::string> errors;      // pairs that could not be decoded (skipped)

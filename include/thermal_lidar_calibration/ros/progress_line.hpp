@@ -18,7 +18,6 @@ class ProgressLine {
   void update(const std::string& text, bool force = false);
   // Ends the line in place (terminal) so later output starts on a fresh line.
   void finish();
-  bool isTerminal() const { return tty_; }
 
  private:
   std::FILE* stream_;
