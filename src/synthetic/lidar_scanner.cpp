@@ -15,12 +15,15 @@ std::vector<LidarReturn> castLidarScan(const LidarModel& lidar, const std::vecto
   std::vector<double> range(static_cast<std::size_t>(beams) * azimuths, inf);
   std::vector<int> owner(range.size(), -2);  // -2 none, -1 ground, >= 0 object
 
-  std::vector<Eigen::Vector3d> beam_dirs;  // azimuth 0 direction per beam (cos el, 0, sin el)
+  // Ground: a downward beam meets the plane at the same range for every azimuth.
   for (int b = 0; b < beams; ++b) {
     const double el = lidar.elevations_rad[b];
     if (el < 0.0) {
-      const double t = ground_z / std::sin(el);
-      if (t <= lidar.max_range_m && t >= lidar.min_range_m) {
+      Ray down;
+      down.direction = lidar.direction(b, 0);
+      double t = 0.0;
+      if (intersectHorizontalPlane(ground_z, down, &t) && t <= lidar.max_range_m &&
+          t >= lidar.min_range_m) {
         for (int a = 0; a < azimuths; ++a) {
           range[b * azimuths + a] = t;
           owner[b * azimuths + a] = -1;

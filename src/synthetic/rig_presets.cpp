@@ -1,19 +1,10 @@
 #include "thermal_lidar_calibration/synthetic/rig_presets.hpp"
 
-#include <Eigen/SVD>
-
 #include <cmath>
 #include <stdexcept>
 
 namespace thermal_lidar_calibration {
 namespace synthetic {
-
-Eigen::Matrix3d orthonormalize(const Eigen::Matrix3d& m) {
-  Eigen::JacobiSVD<Eigen::Matrix3d> svd(m, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
-  d(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0 ? -1.0 : 1.0;
-  return svd.matrixU() * d * svd.matrixV().transpose();
-}
 
 Extrinsic extrinsicFromMount(double yaw_rad, double pitch_down_rad, double roll_rad,
                              const Eigen::Vector3d& camera_in_lidar_m) {
@@ -41,7 +32,8 @@ RigPreset fieldsafeRig() {
   R << 0.0336, -0.9994, 0.0120,  //
       -0.2518, -0.0201, -0.9676,  //
       0.9672, 0.0295, -0.2523;
-  rig.truth = Extrinsic::fromRotationMatrix(orthonormalize(R), Eigen::Vector3d(0.443, -0.393, -0.079));
+  // fromRotationMatrix projects R (4 decimals, so only nearly orthonormal) onto SO(3).
+  rig.truth = Extrinsic::fromRotationMatrix(R, Eigen::Vector3d(0.443, -0.393, -0.079));
   rig.lidar_height_m = 1.9;
   rig.vehicle_speed_mps = 2.5;
   return rig;

@@ -173,12 +173,5 @@ VehiclePose Scene::poseAtArcLength(double s) const {
 
 VehiclePose Scene::vehicleAt(double t_s) const { return poseAtArcLength(config_.speed_mps * t_s); }
 
-std::vector<Solid> Scene::peopleSolidsAt(double t_s) const {
-  std::vector<Solid> solids;
-  solids.reserve(people_.size());
-  for (const auto& p : people_) solids.push_back(makePersonBody(p.poseAt(t_s)));
-  return solids;
-}
-
 }  // namespace synthetic
 }  // namespace thermal_lidar_calibration

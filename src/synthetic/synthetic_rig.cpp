@@ -1,10 +1,12 @@
 #include "thermal_lidar_calibration/synthetic/synthetic_rig.hpp"
 
+#include "thermal_lidar_calibration/core/frame_gate.hpp"
 #include "thermal_lidar_calibration/core/person_counter.hpp"
 #include "thermal_lidar_calibration/synthetic/lidar_scanner.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
@@ -211,28 +213,24 @@ SyntheticFrame SyntheticRig::renderSnapshot(const std::vector<WorldObject>& obje
   return frame;
 }
 
-int countEqualFrames(const std::vector<int>& mask_people, const std::vector<int>& cluster_people, int max_people) {
-  int equal = 0;
-  for (std::size_t i = 0; i < std::min(mask_people.size(), cluster_people.size()); ++i) {
-    if (mask_people[i] == cluster_people[i] && mask_people[i] >= 1 && mask_people[i] <= max_people) ++equal;
-  }
-  return equal;
-}
-
 int countGatedPairs(const std::vector<int>& mask_people, const std::vector<int>& cluster_people, int max_people,
                     int skip_frames) {
-  int kept = 0, skip = 0;
+  if (max_people < 1) return 0;  // no count is in [1, max_people]: nothing is kept
+  GateConfig gate_config;
+  gate_config.max_people = max_people;
+  gate_config.skip_frames = std::max(skip_frames, 0);
+  FrameGate gate(gate_config);
+  // The counts come with no clusters to size: no frame is rejected as a small cluster.
+  constexpr int kNoSmallCluster = std::numeric_limits<int>::max();
   for (std::size_t i = 0; i < std::min(mask_people.size(), cluster_people.size()); ++i) {
-    if (skip > 0) {
-      --skip;
-      continue;
-    }
-    if (mask_people[i] == cluster_people[i] && mask_people[i] >= 1 && mask_people[i] <= max_people) {
-      ++kept;
-      skip = skip_frames;
-    }
+    if (gate.consumeSkip()) continue;
+    gate.decide(mask_people[i], cluster_people[i], kNoSmallCluster);
   }
-  return kept;
+  return static_cast<int>(gate.counts()[GateDecision::kKept]);
+}
+
+int countEqualFrames(const std::vector<int>& mask_people, const std::vector<int>& cluster_people, int max_people) {
+  return countGatedPairs(mask_people, cluster_people, max_people, 0);
 }
 
 }  // namespace synthetic

@@ -1,5 +1,6 @@
 #pragma once
-// Small, fast synthetic pairs for unit tests and benchmarks (no ROS, no ray casting): people are
+// Small, fast synthetic pairs for unit tests and benchmarks (no ROS, no ray casting; the camera
+// and truth come from the synthetic library's FieldSAFE-like rig, so users link it): people are
 // vertical cylinders standing on the ground in the LiDAR frame; the mask is the rasterised
 // projection of a dense sampling of each cylinder (so every surface point lands on the mask),
 // and the LiDAR points are a sparse random subset of the side facing the sensor. The full
@@ -9,6 +10,7 @@
 #include "thermal_lidar_calibration/core/camera_model.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
 #include "thermal_lidar_calibration/core/random.hpp"
+#include "thermal_lidar_calibration/synthetic/rig_presets.hpp"
 
 #include <opencv2/imgproc.hpp>
 
@@ -18,18 +20,16 @@
 namespace thermal_lidar_calibration {
 namespace test_support {
 
+// The camera and truth of the synthetic library's FieldSAFE-like rig (FieldSAFE's K and D, and
+// its own LiDAR-to-thermal transform, orthonormalised). `distorted = false`: the same K with
+// zero distortion.
 inline CameraModel fieldsafeCamera(bool distorted = true) {
-  return CameraModel::fromK(640, 512, {772.41, 0, 322.67, 0, 772.83, 250.66, 0, 0, 1},
-                            distorted ? std::vector<double>{-0.0496, 0.3632, 0, 0, 0}
-                                      : std::vector<double>{});
+  CameraModel camera = synthetic::fieldsafeRig().camera;
+  if (!distorted) camera.distortion.fill(0.0);
+  return camera;
 }
 
-// FieldSAFE's own LiDAR-to-thermal transform (orthonormalised).
-inline Extrinsic fieldsafeTruth() {
-  Eigen::Matrix3d R;
-  R << 0.0336, -0.9994, 0.0120, -0.2518, -0.0201, -0.9676, 0.9672, 0.0295, -0.2523;
-  return Extrinsic::fromRotationMatrix(R, Eigen::Vector3d(0.443, -0.393, -0.079));
-}
+inline Extrinsic fieldsafeTruth() { return synthetic::fieldsafeRig().truth; }
 
 struct SyntheticPairsOptions {
   int pairs = 30;

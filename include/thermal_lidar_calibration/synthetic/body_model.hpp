@@ -50,7 +50,6 @@ class Solid {
   double boundingRadius() const { return radius_; }
   // Corners of the axis-aligned box around every primitive (for projection bounds).
   std::vector<Eigen::Vector3d> boundingBoxCorners() const;
-  bool empty() const { return capsules_.empty() && ellipsoids_.empty(); }
 
  private:
   void updateBounds();

@@ -38,8 +38,6 @@ RigPreset ms2Rig();
 RigPreset rigByName(const std::string& name);
 std::vector<std::string> rigNames();
 
-// Nearest rotation matrix (SVD, det = +1).
-Eigen::Matrix3d orthonormalize(const Eigen::Matrix3d& m);
 // Camera orientation from the LiDAR frame (x fwd, y left, z up) for an optical camera looking
 // along yaw/pitch(down positive)/roll, and its optical centre in the LiDAR frame.
 Extrinsic extrinsicFromMount(double yaw_rad, double pitch_down_rad, double roll_rad,

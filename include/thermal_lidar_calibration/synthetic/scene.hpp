@@ -65,10 +65,7 @@ class Scene {
   VehiclePose vehicleAt(double t_s) const;
   const std::vector<PersonTrack>& people() const { return people_; }
   const std::vector<ClutterItem>& clutter() const { return clutter_; }
-  // Bodies of all people at time t, world frame, in the order of people().
-  std::vector<Solid> peopleSolidsAt(double t_s) const;
   const SceneConfig& config() const { return config_; }
-  double pathLength() const { return path_s_.empty() ? 0.0 : path_s_.back(); }
 
  private:
   VehiclePose poseAtArcLength(double s) const;

@@ -91,10 +91,11 @@ class SyntheticRig {
   std::vector<double> person_grey_;
 };
 
-// Frames a consumer keeps with the paper's gate: equal counts in [1, max_people], then the next
-// `skip_frames` frames are ignored.
+// Frames a consumer keeps with the paper's gate (core FrameGate): equal counts in
+// [1, max_people], then the next `skip_frames` frames are ignored.
 int countGatedPairs(const std::vector<int>& mask_people, const std::vector<int>& cluster_people,
                     int max_people = 3, int skip_frames = 3);
+// Frames with equal counts in [1, max_people]: countGatedPairs with no skipping.
 int countEqualFrames(const std::vector<int>& mask_people, const std::vector<int>& cluster_people,
                      int max_people = 3);
 
