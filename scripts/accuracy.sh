@@ -12,7 +12,6 @@ set -euo pipefail
 # shellcheck source=scripts/workspace.sh
 source "$(dirname "${BASH_SOURCE[0]}")/workspace.sh"
 prepare_workspace
-bin="$ws/devel/lib/thermal_lidar_calibration"
 out="${TLC_ACCURACY_OUT:-$repo/out/accuracy}"
 mkdir -p "$out"
 seeds=("$@")

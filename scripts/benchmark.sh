@@ -8,5 +8,5 @@ source "$(dirname "${BASH_SOURCE[0]}")/workspace.sh"
 prepare_workspace
 echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores" >&2
 # Five repetitions, reported as mean / median / spread: single runs on a shared machine vary.
-"$ws/devel/lib/thermal_lidar_calibration/loss_benchmark" --benchmark_counters_tabular=true \
+"$bin/loss_benchmark" --benchmark_counters_tabular=true \
   --benchmark_repetitions=5 --benchmark_report_aggregates_only=true "$@"

@@ -3,9 +3,8 @@
 # src/ holds a symlink to this repository. Prints the workspace path on the last line.
 # Usage: scripts/build.sh [--tests]     (--tests also builds the gtest/rostest targets)
 set -euo pipefail
-# Debian's ROS tools need Debian's python3, not a pyenv one that may be first on PATH.
-export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
-repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+# shellcheck source=scripts/workspace.sh
+source "$(dirname "${BASH_SOURCE[0]}")/workspace.sh"  # PATH and $repo
 ws="${TLC_WS:-$repo/.ws}"
 mkdir -p "$ws/src"
 ln -sfn "$repo" "$ws/src/thermal_lidar_calibration"

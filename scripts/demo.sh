@@ -10,7 +10,6 @@ source "$(dirname "${BASH_SOURCE[0]}")/workspace.sh"
 prepare_workspace
 out="${TLC_DEMO_OUT:-$repo/out/demo}"
 mkdir -p "$out"
-bin="$ws/devel/lib/thermal_lidar_calibration"
 echo "== generating a synthetic FieldSAFE-like bag" >&2
 "$bin/make_synthetic_bag" --output "$out/demo.bag" --truth "$out/truth.yaml" --seed 1
 echo "== calibrating it" >&2

@@ -1,6 +1,6 @@
 # Sourced by the scripts in this folder (not run on its own). Defines prepare_workspace, which
 # installs the dependencies, builds the package in its catkin workspace and sources it, leaving
-# the workspace path in $ws and the checkout in $repo.
+# the workspace path in $ws, the package's executables in $bin and the checkout in $repo.
 #   prepare_workspace            build the package
 #   prepare_workspace --tests    also build the tests
 # Debian's ROS tools need Debian's python3, not a pyenv one that may be first on PATH.
@@ -10,6 +10,9 @@ repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 prepare_workspace() {
   bash "$repo/scripts/install_deps.sh"
   ws="$(bash "$repo/scripts/build.sh" "$@" | tail -n 1)"
+  # $bin is for the scripts that source this file.
+  # shellcheck disable=SC2034
+  bin="$ws/devel/lib/thermal_lidar_calibration"
   # Debian's catkin profile hooks read unset variables: source them without -u.
   set +u
   # shellcheck disable=SC1091
