@@ -2,11 +2,11 @@
 
 #include "thermal_lidar_calibration/ros/camera_info_file.hpp"
 
+#include "../support/test_files.hpp"
+
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <fstream>
-#include <stdexcept>
 #include <string>
 
 namespace tlc = thermal_lidar_calibration;
@@ -15,11 +15,7 @@ using tlc::ros_io::writeCameraInfoFile;
 
 namespace {
 
-std::string tempDir() {
-  char pattern[] = "/tmp/tlc_camera_info_XXXXXX";
-  const char* dir = mkdtemp(pattern);
-  return dir ? dir : "/tmp";
-}
+std::string tempDir() { return tlc::test_support::tempDir("tlc_camera_info_"); }
 
 std::string writeText(const std::string& path, const std::string& text) {
   std::ofstream(path) << text;
@@ -27,12 +23,7 @@ std::string writeText(const std::string& path, const std::string& text) {
 }
 
 std::string errorOf(const std::string& path) {
-  try {
-    loadCameraInfoFile(path);
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "<no exception>";
+  return tlc::test_support::errorOf([&] { loadCameraInfoFile(path); });
 }
 
 }  // namespace

@@ -2,19 +2,21 @@
 
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 
+#include "../support/test_files.hpp"
+
 #include <gtest/gtest.h>
 #include <sensor_msgs/image_encodings.h>
 
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <stdexcept>
 
 namespace tlc = thermal_lidar_calibration;
 using tlc::ros_io::cameraModelFromMsg;
 using tlc::ros_io::decodeClusters;
 using tlc::ros_io::decodeFrame;
 using tlc::ros_io::decodeMonoImage;
+using tlc::test_support::errorOf;
 
 namespace {
 
@@ -105,15 +107,6 @@ sensor_msgs::PointCloud2 xyzLabelCloud(std::uint8_t label_type) {
                     {"z", sensor_msgs::PointField::FLOAT32},
                     {"label", label_type}},
                    {{1.0, 2.0, 3.0, 1}, {-1.5, 0.25, 8.0, 2}, {0.0, 0.0, 1.0, 2}});
-}
-
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "<no exception>";
 }
 
 sensor_msgs::CameraInfo goodInfo() {

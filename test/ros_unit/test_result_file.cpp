@@ -2,10 +2,11 @@
 
 #include "thermal_lidar_calibration/ros/result_file.hpp"
 
+#include "../support/test_files.hpp"
+
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
-#include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <stdexcept>
@@ -15,11 +16,7 @@ using namespace tlc::ros_io;
 
 namespace {
 
-std::string tempDir() {
-  char pattern[] = "/tmp/tlc_result_XXXXXX";
-  const char* dir = mkdtemp(pattern);
-  return dir ? dir : "/tmp";
-}
+std::string tempDir() { return tlc::test_support::tempDir("tlc_result_"); }
 
 tlc::CalibrationResult sampleResult() {
   tlc::CalibrationResult r;
