@@ -10,6 +10,8 @@ packages=(
   libimage-transport-dev libmessage-filters-dev libopencv-dev libeigen3-dev libyaml-cpp-dev
   python3-rostest librostest-dev ros-message-generation ros-message-runtime rosbash
   googletest libgtest-dev libbenchmark-dev python3-rosbag python3-yaml
+  libpcl-dev libpcl-conversions-dev libnodeletlib-dev libnodeletlib-tools
+  libdiagnostic-updater-dev libdiagnostic-msgs-dev libvisualization-msgs-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,6 +1,6 @@
 // calibrate_bag: offline calibration from a ROS 1 bag. Parse, construct, run.
 
-#include "thermal_lidar_calibration/ros/bag_calibration.hpp"
+#include "thermal_lidar_calibration/tools/calibrate_bag.hpp"
 
 #include <cstdio>
 #include <exception>

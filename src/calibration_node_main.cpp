@@ -1,5 +1,5 @@
-// calibration_node: see include/thermal_lidar_calibration/ros/calibration_node.hpp and README.md.
-#include "thermal_lidar_calibration/ros/calibration_node.hpp"
+// calibration_node: see include/thermal_lidar_calibration/node/calibration_node.hpp and README.md.
+#include "thermal_lidar_calibration/node/calibration_node.hpp"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "calibration_node");

@@ -2,10 +2,10 @@
 // bag (LZ4) with the INTERFACE topics, and writes the true extrinsic to a YAML truth file.
 // Bad arguments: one-line error on stderr, exit 2. Other failures: exit 1.
 
-#include "thermal_lidar_calibration/ros/calibrate_bag_options.hpp"
+#include "thermal_lidar_calibration/tools/calibrate_bag_options.hpp"
 #include "thermal_lidar_calibration/ros/calibrated_tf_publisher.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
-#include "thermal_lidar_calibration/ros/result_file.hpp"
+#include "thermal_lidar_calibration/app/result_file.hpp"
 #include "thermal_lidar_calibration/synthetic/synthetic_rig.hpp"
 
 #include <geometry_msgs/TransformStamped.h>
@@ -227,7 +227,7 @@ void writeTruth(const Options& o, const syn::SyntheticRig& rig) {
   out << YAML::BeginMap;
   out << YAML::Key << "lidar_frame" << YAML::Value << o.lidar_frame;
   out << YAML::Key << "camera_frame" << YAML::Value << o.camera_frame;
-  ros_io::emitExtrinsic(out, c.rig.truth);
+  thermal_lidar_calibration::emitExtrinsic(out, c.rig.truth);
   out << YAML::Key << "rig" << YAML::Value << c.rig.name;
   out << YAML::Key << "rig_description" << YAML::Value << c.rig.description;
   out << YAML::Key << "lidar_model" << YAML::Value << c.rig.lidar.name;
@@ -246,9 +246,9 @@ void writeTruth(const Options& o, const syn::SyntheticRig& rig) {
   out << YAML::Key << "image_width" << YAML::Value << cam.width;
   out << YAML::Key << "image_height" << YAML::Value << cam.height;
   const double camera_matrix[9] = {cam.fx, cam.skew, cam.cx, 0.0, cam.fy, cam.cy, 0.0, 0.0, 1.0};
-  ros_io::emitVector(out, "camera_matrix", camera_matrix, 9);
+  thermal_lidar_calibration::emitVector(out, "camera_matrix", camera_matrix, 9);
   out << YAML::Key << "distortion_model" << YAML::Value << "plumb_bob";
-  ros_io::emitVector(out, "distortion_coefficients", cam.distortion.data(), 5);
+  thermal_lidar_calibration::emitVector(out, "distortion_coefficients", cam.distortion.data(), 5);
   out << YAML::Key << "bag" << YAML::Value << o.output;
   out << YAML::EndMap;
   std::ofstream file(o.truth);

@@ -4,8 +4,6 @@
 
 #include <Eigen/Geometry>
 
-#include <iomanip>
-#include <sstream>
 
 namespace thermal_lidar_calibration {
 namespace ros_io {
@@ -27,16 +25,6 @@ geometry_msgs::TransformStamped toTransformMsg(const Extrinsic& extrinsic,
   msg.transform.rotation.z = q.z();
   msg.transform.rotation.w = q.w();
   return msg;
-}
-
-std::string staticTransformPublisherCommand(const geometry_msgs::TransformStamped& t) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(6) << "rosrun tf2_ros static_transform_publisher "
-    << t.transform.translation.x << ' ' << t.transform.translation.y << ' '
-    << t.transform.translation.z << ' ' << std::setprecision(9) << t.transform.rotation.x << ' '
-    << t.transform.rotation.y << ' ' << t.transform.rotation.z << ' ' << t.transform.rotation.w
-    << ' ' << t.header.frame_id << ' ' << t.child_frame_id;
-  return s.str();
 }
 
 CalibratedTfPublisher::CalibratedTfPublisher(std::string child_frame_param)

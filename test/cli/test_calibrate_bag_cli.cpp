@@ -4,7 +4,7 @@
 #include "bag_fixture.hpp"
 
 #include "thermal_lidar_calibration/ros/dataset_bag.hpp"
-#include "thermal_lidar_calibration/ros/result_file.hpp"
+#include "thermal_lidar_calibration/app/result_file.hpp"
 
 #include <gtest/gtest.h>
 #include <ros/time.h>
@@ -292,9 +292,9 @@ TEST_F(CalibrateBagCli, CalibratesAMakeSyntheticBagBag) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("rotation error"), std::string::npos) << r.out;
   const thermal_lidar_calibration::Extrinsic result =
-      thermal_lidar_calibration::ros_io::readExtrinsicFile(dir_ + "/out.yaml");
+      thermal_lidar_calibration::readExtrinsicFile(dir_ + "/out.yaml");
   const thermal_lidar_calibration::Extrinsic truth =
-      thermal_lidar_calibration::ros_io::readExtrinsicFile(path + ".truth.yaml");
+      thermal_lidar_calibration::readExtrinsicFile(path + ".truth.yaml");
   EXPECT_LT(thermal_lidar_calibration::rotationErrorRad(result, truth) * 180.0 / M_PI, 2.0);
   EXPECT_LT(thermal_lidar_calibration::translationErrorM(result, truth), 0.30);
   const YAML::Node y = YAML::LoadFile(dir_ + "/out.yaml");

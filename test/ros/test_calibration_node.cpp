@@ -7,7 +7,7 @@
 //                    on ~status and say on /rosout what was wrong with each kind.
 
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
-#include "thermal_lidar_calibration/ros/result_file.hpp"
+#include "thermal_lidar_calibration/app/result_file.hpp"
 
 #include <thermal_lidar_calibration/CalibrationStatus.h>
 
@@ -146,7 +146,7 @@ TEST(NodeBag, ReachesDonePublishesTruthAndWritesYaml) {
   }
   EXPECT_EQ(published.header.frame_id, lidar_frame);
   const Eigen::Isometry3d T_camera_lidar = toIsometry(published.transform).inverse();
-  const Extrinsic truth = thermal_lidar_calibration::ros_io::readExtrinsicFile(truth_file);
+  const Extrinsic truth = thermal_lidar_calibration::readExtrinsicFile(truth_file);
   const Extrinsic estimate =
       Extrinsic::fromRotationMatrix(T_camera_lidar.linear(), T_camera_lidar.translation());
   const double rot_err_deg = thermal_lidar_calibration::rotationErrorRad(estimate, truth) * 180.0 / M_PI;
@@ -158,7 +158,7 @@ TEST(NodeBag, ReachesDonePublishesTruthAndWritesYaml) {
   EXPECT_LT(g_observed.last_status.final_loss, max_loss_px);
 
   // The YAML holds the same extrinsic.
-  const Extrinsic from_file = thermal_lidar_calibration::ros_io::readExtrinsicFile(result_file);
+  const Extrinsic from_file = thermal_lidar_calibration::readExtrinsicFile(result_file);
   EXPECT_LT(thermal_lidar_calibration::rotationErrorRad(from_file, estimate), 1e-6);
   EXPECT_LT(thermal_lidar_calibration::translationErrorM(from_file, estimate), 1e-6);
 

@@ -1,6 +1,6 @@
 // camera_calibration YAML files: the shipped FLIR A65 file, round trips and bad files.
 
-#include "thermal_lidar_calibration/ros/camera_info_file.hpp"
+#include "thermal_lidar_calibration/app/camera_info_file.hpp"
 
 #include "../support/test_files.hpp"
 
@@ -10,8 +10,8 @@
 #include <string>
 
 namespace tlc = thermal_lidar_calibration;
-using tlc::ros_io::loadCameraInfoFile;
-using tlc::ros_io::writeCameraInfoFile;
+using tlc::loadCameraInfoFile;
+using tlc::writeCameraInfoFile;
 
 namespace {
 

@@ -1,8 +1,8 @@
 // The parameter table: defaults = Table 1, overrides from YAML, and the error messages.
 
-#include "thermal_lidar_calibration/ros/parameters.hpp"
-#include "thermal_lidar_calibration/ros/node_parameters.hpp"
-#include "thermal_lidar_calibration/ros/unknown_parameters.hpp"
+#include "thermal_lidar_calibration/app/parameters.hpp"
+#include "thermal_lidar_calibration/node/node_parameters.hpp"
+#include "thermal_lidar_calibration/app/unknown_parameters.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 namespace tlc = thermal_lidar_calibration;
+using namespace tlc;
 using namespace tlc::ros_io;
 
 namespace {

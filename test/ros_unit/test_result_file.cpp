@@ -1,6 +1,6 @@
 // Result file: every INTERFACE key, the extras, and reading it (or a truth file) back.
 
-#include "thermal_lidar_calibration/ros/result_file.hpp"
+#include "thermal_lidar_calibration/app/result_file.hpp"
 
 #include "../support/test_files.hpp"
 
@@ -12,7 +12,7 @@
 #include <stdexcept>
 
 namespace tlc = thermal_lidar_calibration;
-using namespace tlc::ros_io;
+using namespace tlc;
 
 namespace {
 

@@ -21,9 +21,6 @@ namespace ros_io {
 geometry_msgs::TransformStamped toTransformMsg(const Extrinsic& extrinsic,
                                                const std::string& lidar_frame,
                                                const std::string& child_frame, ros::Time stamp);
-// The equivalent command line ("rosrun tf2_ros static_transform_publisher x y z qx qy qz qw
-// lidar child").
-std::string staticTransformPublisherCommand(const geometry_msgs::TransformStamped& transform);
 
 class CalibratedTfPublisher {
  public:

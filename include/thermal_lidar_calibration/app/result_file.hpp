@@ -1,0 +1,48 @@
+#pragma once
+// The YAML result file of INTERFACE.md (plus per-pair detail, parameters, seed, run time),
+// and a reader for result / truth files (same keys).
+
+#include "thermal_lidar_calibration/core/calibrator.hpp"
+#include "thermal_lidar_calibration/app/parameters.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace YAML {
+class Emitter;
+}  // namespace YAML
+
+namespace thermal_lidar_calibration {
+
+// The result against a known truth (calibrate_bag --truth, synthetic bags).
+struct TruthComparison {
+  std::string truth_file;
+  double rotation_error_rad = 0.0;
+  double translation_error_m = 0.0;
+  double truth_loss = 0.0;  // Eq. (3), nearest rule, on the pairs the result used
+};
+
+struct ResultContext {
+  std::string lidar_frame;
+  std::string camera_frame;
+  std::string source;                  // bag path or "live"
+  std::vector<double> pair_stamps_s;   // one per collected pair, same order as the result
+  CoreParameters parameters;
+  std::optional<TruthComparison> truth;  // written as a `truth:` block when set
+};
+
+// Throws std::runtime_error if the file cannot be written (says the path and the reason).
+void writeResultFile(const std::string& path, const CalibrationResult& result,
+                     const ResultContext& context);
+// Reads rotation_vector (or rotation_matrix) and translation. Throws std::invalid_argument.
+Extrinsic readExtrinsicFile(const std::string& path);
+
+// Building blocks of the result file, shared with make_synthetic_bag's truth file. Both write
+// into a map the caller has opened; numbers use the caller's emitter precision.
+// `key: [v[0], ..., v[n-1]]` as a flow sequence.
+void emitVector(YAML::Emitter& out, const std::string& key, const double* v, int n);
+// rotation_vector, translation, rotation_matrix (row-major) and quaternion_xyzw, in that order.
+void emitExtrinsic(YAML::Emitter& out, const Extrinsic& e);
+
+}  // namespace thermal_lidar_calibration

@@ -1,0 +1,110 @@
+#pragma once
+// calibration_node: collects (thermal mask, LiDAR person clusters) pairs through the shared
+// ingest path (FrameSynchronizer -> DatasetBuilder, as calibrate_bag), records each kept pair to
+// ~dataset_bag, runs calibrate() on a CalibrationWorker when ~pairs_required pairs are kept or on
+// ~calibrate, then publishes the static transform, writes ~output_file and draws ~overlay.
+// Callbacks only decode and gate; the optimizer runs on the worker thread.
+
+#include "thermal_lidar_calibration/core/calibrator.hpp"
+#include "thermal_lidar_calibration/core/dataset_builder.hpp"
+#include "thermal_lidar_calibration/ros/calibrated_tf_publisher.hpp"
+#include "thermal_lidar_calibration/app/calibration_worker.hpp"
+#include "thermal_lidar_calibration/ros/dataset_bag.hpp"
+#include "thermal_lidar_calibration/app/fault_throttle.hpp"
+#include "thermal_lidar_calibration/ros/frame_synchronizer.hpp"
+#include "thermal_lidar_calibration/node/node_parameters.hpp"
+#include "thermal_lidar_calibration/node/overlay_publisher.hpp"
+
+#include <thermal_lidar_calibration/CalibrationStatus.h>
+
+#include <image_transport/image_transport.h>
+#include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <std_srvs/Trigger.h>
+
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+
+namespace thermal_lidar_calibration {
+namespace ros_io {
+
+enum class NodeState : std::uint8_t { kCollecting = 0, kOptimizing = 1, kDone = 2, kFailed = 3 };
+const char* toString(NodeState state);
+
+class CalibrationNode {
+ public:
+  // Reads the parameters (throws std::invalid_argument on a bad one), reloads the dataset with
+  // ~resume, then subscribes and advertises.
+  explicit CalibrationNode(ros::NodeHandle private_nh);
+  ~CalibrationNode();
+
+ private:
+  // Each distinct bad-frame fault is logged at most once per this period (fault_throttle_).
+  static constexpr double kFaultLogPeriodS = 5.0;
+
+  void readParameters();
+  void resumeDataset();
+  void createBuilder(const CameraModel& camera, const std::string& source);
+
+  // Callbacks (main thread).
+  void onImage(const sensor_msgs::Image::ConstPtr& msg);
+  void onMask(const sensor_msgs::Image::ConstPtr& msg);
+  void onClusters(const sensor_msgs::PointCloud2::ConstPtr& msg);
+  void onCameraInfo(const sensor_msgs::CameraInfo::ConstPtr& msg);
+  void onFrame(const sensor_msgs::Image::ConstPtr& image, const sensor_msgs::Image::ConstPtr& mask,
+               const sensor_msgs::PointCloud2::ConstPtr& clusters);
+  void onTimer(const ros::WallTimerEvent& event);
+  bool onCalibrate(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  bool onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  bool onSave(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+
+  // Lifecycle.
+  std::string startOptimization(const std::string& why);  // "" when started, else the refusal
+  void handleOutcome(CalibrationWorker::Outcome outcome);
+  void publishResult();
+  void writeResult();
+  void setState(NodeState state, const std::string& message);
+  void logProgress(bool force);
+  void publishStatus();
+  std::string progressLine() const;
+
+  ros::NodeHandle nh_;          // node namespace: input topics (remap them)
+  ros::NodeHandle private_nh_;  // ~ parameters, ~status, ~overlay, services
+  NodeParameters params_;
+  std::string image_topic_, mask_topic_, clusters_topic_, camera_info_topic_;
+
+  std::unique_ptr<DatasetBuilder> builder_;  // holds the camera model once intrinsics are known
+  std::optional<sensor_msgs::CameraInfo> camera_info_msg_;  // written with each pair
+  std::unique_ptr<DatasetBagWriter> dataset_writer_;
+  std::set<long long> stored_stamps_ns_;  // image stamps of pairs in the dataset (no duplicates)
+  std::size_t pairs_resumed_ = 0;
+
+  std::unique_ptr<FrameSynchronizer> synchronizer_;
+  std::unique_ptr<image_transport::ImageTransport> it_;
+  image_transport::Subscriber image_sub_, mask_sub_;
+  ros::Subscriber clusters_sub_, camera_info_sub_;
+  std::unique_ptr<OverlayPublisher> overlay_;
+  std::unique_ptr<CalibratedTfPublisher> tf_publisher_;
+  ros::Publisher status_pub_;
+  ros::ServiceServer calibrate_srv_, reset_srv_, save_srv_;
+  ros::WallTimer timer_;
+
+  CalibrationWorker worker_;
+  bool discard_outcome_ = false;  // set by ~reset while a run is stopping
+  NodeState state_ = NodeState::kCollecting;
+  std::string state_message_;
+  std::optional<CalibrationResult> result_;
+  std::vector<double> result_stamps_s_;
+  std::string camera_frame_, lidar_frame_;
+  std::string published_child_;
+  bool result_published_ = true;  // false while a result waits for the tf check window
+  ros::WallTime start_time_;
+  ros::WallTime last_progress_log_;
+  std::uint64_t last_logged_considered_ = ~0ull;
+  FaultThrottle fault_throttle_{kFaultLogPeriodS};
+};
+
+}  // namespace ros_io
+}  // namespace thermal_lidar_calibration

@@ -1,0 +1,99 @@
+// calibration_node: ~status, lifecycle state and the periodic progress log.
+
+#include "thermal_lidar_calibration/node/calibration_node.hpp"
+
+#include <sstream>
+
+namespace thermal_lidar_calibration {
+namespace ros_io {
+
+std::string CalibrationNode::progressLine() const {
+  std::ostringstream s;
+  const std::size_t kept = builder_ ? builder_->pairs().size() : 0;
+  s << "kept " << kept << "/" << params_.core.pairs_required;
+  if (!builder_) return s.str() + " (no intrinsics yet)";
+  const RejectionCounts& c = builder_->counts();
+  s << "; rejected: unequal " << c[GateDecision::kCountMismatch] << ", none "
+    << c[GateDecision::kNoPeople] << ", >H_max " << c[GateDecision::kTooManyPeople]
+    << ", skipped " << c[GateDecision::kSkipped];
+  if (c[GateDecision::kSmallCluster] > 0) s << ", small cluster " << c[GateDecision::kSmallCluster];
+  if (c[GateDecision::kBadMessage] > 0) s << ", bad " << c[GateDecision::kBadMessage];
+  if (pairs_resumed_ > 0) s << " (" << pairs_resumed_ << " resumed)";
+  return s.str();
+}
+
+void CalibrationNode::setState(NodeState state, const std::string& message) {
+  state_ = state;
+  state_message_ = message;
+  publishStatus();
+}
+
+void CalibrationNode::logProgress(bool force) {
+  const ros::WallTime now = ros::WallTime::now();
+  if (!force && (now - last_progress_log_).toSec() < params_.progress_log_period_s) return;
+  if (state_ == NodeState::kCollecting || state_ == NodeState::kFailed) {
+    const std::uint64_t considered = builder_ ? builder_->counts().considered() : 0;
+    if (!force && considered == last_logged_considered_) return;  // nothing new
+    last_logged_considered_ = considered;
+    ROS_INFO("%s: %s", toString(state_), progressLine().c_str());
+  } else if (state_ == NodeState::kOptimizing) {
+    const auto p = worker_.progress();
+    if (!p) return;
+    ROS_INFO("optimizing: %s generation %d/%d, best loss %.3f px, %llu evaluations",
+             p->stage.c_str(), p->generation, p->generations_total, p->best_loss,
+             static_cast<unsigned long long>(p->evaluations));
+  } else {
+    return;
+  }
+  last_progress_log_ = now;
+}
+
+void CalibrationNode::publishStatus() {
+  CalibrationStatus msg;
+  msg.header.stamp = ros::Time::now();
+  msg.state = static_cast<std::uint8_t>(state_);
+  msg.state_name = toString(state_);
+  msg.message = state_message_;
+  msg.pairs_required = static_cast<std::uint32_t>(params_.core.pairs_required);
+  if (builder_) {
+    const RejectionCounts& c = builder_->counts();
+    msg.pairs_kept = static_cast<std::uint32_t>(builder_->pairs().size());
+    msg.frames_considered = static_cast<std::uint32_t>(c.considered());
+    msg.rejected_count_mismatch = static_cast<std::uint32_t>(c[GateDecision::kCountMismatch]);
+    msg.rejected_no_people = static_cast<std::uint32_t>(c[GateDecision::kNoPeople]);
+    msg.rejected_too_many_people = static_cast<std::uint32_t>(c[GateDecision::kTooManyPeople]);
+    msg.rejected_skipped = static_cast<std::uint32_t>(c[GateDecision::kSkipped]);
+    msg.rejected_small_cluster = static_cast<std::uint32_t>(c[GateDecision::kSmallCluster]);
+    msg.rejected_bad_message = static_cast<std::uint32_t>(c[GateDecision::kBadMessage]);
+    msg.nonfinite_points_dropped = static_cast<std::uint32_t>(c.nonfinite_points_dropped);
+  }
+  if (state_ == NodeState::kOptimizing) {
+    if (const auto p = worker_.progress()) {
+      msg.stage = p->stage;
+      msg.generation = static_cast<std::uint32_t>(p->generation);
+      msg.generations_total = static_cast<std::uint32_t>(p->generations_total);
+      msg.best_loss = p->best_loss;
+      msg.evaluations = p->evaluations;
+      for (int i = 0; i < 3; ++i) {
+        msg.rotation_vector[i] = p->best.rotation_vector[i];
+        msg.translation[i] = p->best.translation[i];
+      }
+    }
+  } else if (result_) {
+    msg.best_loss = result_->loss;
+    msg.final_loss = result_->loss;
+    msg.evaluations = result_->evaluations;
+    for (int i = 0; i < 3; ++i) {
+      msg.rotation_vector[i] = result_->extrinsic.rotation_vector[i];
+      msg.translation[i] = result_->extrinsic.translation[i];
+    }
+  }
+  msg.pairs_resumed = static_cast<std::uint32_t>(pairs_resumed_);
+  msg.dataset_bag = params_.dataset_bag;
+  msg.output_file = params_.output_file;
+  msg.child_frame = result_ && result_published_ ? published_child_ : "";
+  status_pub_.publish(msg);
+}
+
+}  // namespace ros_io
+}  // namespace thermal_lidar_calibration

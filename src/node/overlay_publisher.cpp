@@ -1,0 +1,133 @@
+// ~overlay publisher: caches inputs, renders with OverlayRenderer when subscribed.
+
+#include "thermal_lidar_calibration/node/overlay_publisher.hpp"
+
+#include "thermal_lidar_calibration/ros/msg_conversion.hpp"
+
+#include <cv_bridge/cv_bridge.h>
+#include <ros/console.h>
+#include <sensor_msgs/point_cloud2_iterator.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace thermal_lidar_calibration {
+namespace ros_io {
+namespace {
+
+bool hasXyz(const sensor_msgs::PointCloud2& cloud) {
+  int found = 0;
+  for (const auto& f : cloud.fields) {
+    if ((f.name == "x" || f.name == "y" || f.name == "z") &&
+        f.datatype == sensor_msgs::PointField::FLOAT32) {
+      ++found;
+    }
+  }
+  return found == 3;
+}
+
+}  // namespace
+
+OverlayPublisher::OverlayPublisher(ros::NodeHandle& private_nh, int max_points,
+                                   std::string clusters_topic)
+    : it_(private_nh), max_points_(max_points), clusters_topic_(std::move(clusters_topic)) {
+  publisher_ = it_.advertise("overlay", 1);
+  cloud_subscriber_ = private_nh.subscribe("overlay_cloud", 1, &OverlayPublisher::onCloud, this);
+}
+
+void OverlayPublisher::setCamera(const CameraModel& camera) {
+  renderer_ = std::make_unique<OverlayRenderer>(camera, max_points_);
+}
+
+void OverlayPublisher::onMask(const sensor_msgs::Image::ConstPtr& mask) {
+  mask_msg_ = mask;
+  mask_decoded_ = false;
+  mask_.release();
+}
+
+void OverlayPublisher::onClusters(const sensor_msgs::PointCloud2::ConstPtr& clusters) {
+  clusters_msg_ = clusters;
+  clusters_decoded_ = false;
+  clusters_ = DecodedClusters();
+}
+
+void OverlayPublisher::onCloud(const sensor_msgs::PointCloud2::ConstPtr& cloud) {
+  cloud_msg_ = cloud;
+  cloud_decoded_ = false;
+}
+
+const cv::Mat& OverlayPublisher::decodedMask() {
+  if (!mask_decoded_) {
+    try {
+      mask_ = decodeMonoImage(*mask_msg_, "thermal/human_mask");
+    } catch (const std::invalid_argument&) {
+      mask_.release();  // the ingest path reports bad masks
+    }
+    mask_decoded_ = true;
+  }
+  return mask_;
+}
+
+const DecodedClusters& OverlayPublisher::decodedClusters() {
+  if (!clusters_decoded_) {
+    try {
+      clusters_ = decodeClusters(*clusters_msg_, clusters_topic_);
+    } catch (const std::invalid_argument&) {
+      clusters_ = DecodedClusters();  // the ingest path reports bad clusters
+    }
+    clusters_decoded_ = true;
+  }
+  return clusters_;
+}
+
+void OverlayPublisher::decodeCloud() {
+  if (cloud_decoded_) return;
+  cloud_decoded_ = true;
+  cloud_points_.clear();
+  if (!hasXyz(*cloud_msg_)) {
+    ROS_WARN_THROTTLE(10.0, "~overlay_cloud: cloud has no float32 x, y, z fields; ignored");
+    return;
+  }
+  const std::size_t n = static_cast<std::size_t>(cloud_msg_->width) * cloud_msg_->height;
+  const std::size_t stride =
+      std::max<std::size_t>(1, n / static_cast<std::size_t>(std::max(1, max_points_)));
+  cloud_points_.reserve(n / stride + 1);
+  sensor_msgs::PointCloud2ConstIterator<float> x(*cloud_msg_, "x"), y(*cloud_msg_, "y"),
+      z(*cloud_msg_, "z");
+  for (std::size_t i = 0; i < n; ++i, ++x, ++y, ++z) {
+    if (i % stride != 0) continue;
+    if (std::isfinite(*x) && std::isfinite(*y) && std::isfinite(*z)) {
+      cloud_points_.emplace_back(*x, *y, *z);
+    }
+  }
+}
+
+// Every input is decoded at most once per message (cached until the next one arrives); the
+// renderer only reads the shared mask data.
+void OverlayPublisher::onImage(const sensor_msgs::Image::ConstPtr& image) {
+  if (!renderer_ || publisher_.getNumSubscribers() == 0) return;
+  OverlayInput input;
+  try {
+    input.thermal = decodeMonoImage(*image, "thermal/image_raw");
+  } catch (const std::invalid_argument&) {
+    return;  // the ingest path reports bad images
+  }
+  if (mask_msg_ && mask_msg_->width == image->width && mask_msg_->height == image->height) {
+    input.mask = decodedMask();  // shares the cached pixels (no copy)
+  }
+  if (estimate_) {
+    input.estimate = &*estimate_;
+    if (clusters_msg_) {
+      const DecodedClusters& decoded = decodedClusters();
+      input.cluster_points = decoded.points;
+      input.cluster_labels = decoded.labels;
+    }
+    if (cloud_msg_) decodeCloud();
+    input.cloud_points = &cloud_points_;
+  }
+  const cv::Mat bgr = renderer_->render(input);
+  publisher_.publish(cv_bridge::CvImage(image->header, "bgr8", bgr).toImageMsg());
+}
+
+}  // namespace ros_io
+}  // namespace thermal_lidar_calibration

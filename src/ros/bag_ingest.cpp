@@ -1,0 +1,219 @@
+// Bag -> FrameSynchronizer -> DatasetBuilder, with every bag fault turned into one line.
+
+#include "thermal_lidar_calibration/ros/bag_ingest.hpp"
+
+#include "thermal_lidar_calibration/ros/frame_synchronizer.hpp"
+#include "thermal_lidar_calibration/ros/msg_conversion.hpp"
+
+#include <rosbag/exceptions.h>
+#include <rosbag/view.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/PointCloud2.h>
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+
+namespace thermal_lidar_calibration {
+namespace ros_io {
+namespace {
+
+constexpr std::size_t kMaxDistinctWarnings = 5;
+
+const BagTopicInfo* findTopic(const std::vector<BagTopicInfo>& topics, const std::string& name) {
+  for (const auto& t : topics) {
+    if (t.topic == name) return &t;
+  }
+  return nullptr;
+}
+
+bool startsLikeABag(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char head[13] = {};
+  in.read(head, sizeof(head));
+  return in.gcount() == sizeof(head) && std::string(head, sizeof(head)) == "#ROSBAG V2.0\n";
+}
+
+}  // namespace
+
+void openBag(rosbag::Bag& bag, const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) {
+    throw std::invalid_argument("cannot open bag " + path + ": no such file; check --bag");
+  }
+  if (S_ISDIR(st.st_mode)) {
+    throw std::invalid_argument("cannot open bag " + path + ": it is a directory; pass a .bag file");
+  }
+  try {
+    bag.open(path, rosbag::bagmode::Read);
+  } catch (const rosbag::BagUnindexedException&) {
+    throw std::invalid_argument("bag " + path + " is unindexed (recording was cut short); run "
+                                "'rosbag reindex " + path + "' first");
+  } catch (const std::exception& e) {
+    if (startsLikeABag(path)) {
+      throw std::invalid_argument("bag " + path + " is damaged or truncated (" +
+                                  std::string(e.what()) + "); try 'rosbag reindex " + path +
+                                  "' or record it again");
+    }
+    throw std::invalid_argument("cannot read " + path + " as a ROS 1 bag (" +
+                                std::string(e.what()) + "); is it a .bag file from rosbag record?");
+  }
+}
+
+std::vector<BagTopicInfo> listBagTopics(rosbag::Bag& bag) {
+  std::vector<BagTopicInfo> topics;
+  rosbag::View all(bag);
+  for (const rosbag::ConnectionInfo* c : all.getConnections()) {
+    if (findTopic(topics, c->topic)) continue;
+    BagTopicInfo info;
+    info.topic = c->topic;
+    info.datatype = c->datatype;
+    topics.push_back(info);
+  }
+  for (auto& t : topics) {
+    rosbag::View view(bag, rosbag::TopicQuery(t.topic));
+    t.messages = view.size();
+  }
+  std::sort(topics.begin(), topics.end(),
+            [](const BagTopicInfo& a, const BagTopicInfo& b) { return a.topic < b.topic; });
+  return topics;
+}
+
+std::string describeBagTopics(const std::vector<BagTopicInfo>& topics) {
+  if (topics.empty()) return "none";
+  std::string out;
+  for (const auto& t : topics) {
+    out += (out.empty() ? "" : ", ") + t.topic + " (" + t.datatype + ", " +
+           std::to_string(t.messages) + ")";
+  }
+  return out;
+}
+
+void checkBagTopics(const std::vector<BagTopicInfo>& topics, const BagTopics& wanted,
+                    const std::string& bag_path) {
+  std::uint64_t total = 0;
+  for (const auto& t : topics) total += t.messages;
+  if (total == 0) {
+    throw std::invalid_argument("bag " + bag_path + " is empty (no messages); record " +
+                                wanted.image + ", " + wanted.mask + ", " + wanted.clusters +
+                                " and " + wanted.camera_info);
+  }
+  const struct {
+    const std::string& topic;
+    const char* type;
+    const char* flag;
+  } required[] = {{wanted.image, "sensor_msgs/Image", "--image-topic"},
+                  {wanted.mask, "sensor_msgs/Image", "--mask-topic"},
+                  {wanted.clusters, "sensor_msgs/PointCloud2", "--clusters-topic"}};
+  for (const auto& r : required) {
+    const BagTopicInfo* info = findTopic(topics, r.topic);
+    if (!info || info->messages == 0) {
+      throw std::invalid_argument("topic " + r.topic + " is not in bag " + bag_path +
+                                  " (bag topics: " + describeBagTopics(topics) + "); pass " +
+                                  r.flag + " TOPIC");
+    }
+    if (info->datatype != r.type) {
+      throw std::invalid_argument("topic " + r.topic + " in bag " + bag_path + " has type " +
+                                  info->datatype + ", expected " + r.type + "; pass " + r.flag +
+                                  " TOPIC with the right topic");
+    }
+  }
+}
+
+CameraModel cameraModelFromBag(rosbag::Bag& bag, const std::string& topic,
+                               const std::vector<BagTopicInfo>& topics) {
+  const BagTopicInfo* info = findTopic(topics, topic);
+  if (!info || info->messages == 0) {
+    throw std::invalid_argument("no CameraInfo on " + topic +
+                                " in the bag; pass --camera-info FILE.yaml (camera_calibration "
+                                "format) or --camera-info-topic TOPIC");
+  }
+  if (info->datatype != "sensor_msgs/CameraInfo") {
+    throw std::invalid_argument("topic " + topic + " has type " + info->datatype +
+                                ", expected sensor_msgs/CameraInfo; pass --camera-info FILE.yaml");
+  }
+  try {
+    rosbag::View view(bag, rosbag::TopicQuery(topic));
+    for (const rosbag::MessageInstance& m : view) {
+      const sensor_msgs::CameraInfo::ConstPtr msg = m.instantiate<sensor_msgs::CameraInfo>();
+      if (msg) return cameraModelFromMsg(*msg);
+    }
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(topic + ": " + e.what() + " (or pass --camera-info FILE.yaml)");
+  } catch (const std::exception& e) {
+    throw std::invalid_argument("cannot read CameraInfo on " + topic + " (" + e.what() +
+                                "); pass --camera-info FILE.yaml");
+  }
+  throw std::invalid_argument("no readable CameraInfo on " + topic +
+                              " in the bag; pass --camera-info FILE.yaml");
+}
+
+BagIngestStats ingestBag(rosbag::Bag& bag, const BagTopics& topics, const CoreParameters& params,
+                         DatasetBuilder& builder, const IngestCallbacks& callbacks) {
+  BagIngestStats stats;
+  const auto on_frame = [&](const sensor_msgs::Image::ConstPtr& image,
+                            const sensor_msgs::Image::ConstPtr& mask,
+                            const sensor_msgs::PointCloud2::ConstPtr& clusters) {
+    ++stats.frames;
+    const OfferOutcome outcome = builder.offer([&] {
+      return decodeFrame(*image, *mask, *clusters, topics.image, topics.mask, topics.clusters);
+    });
+    if (outcome.decision != GateDecision::kBadMessage) return;
+    const std::string error = outcome.error.empty() ? "undecodable frame" : outcome.error;
+    const std::uint64_t seen = ++stats.bad_message_errors[error];
+    if (seen == 1 && callbacks.warn) {
+      const std::size_t distinct = stats.bad_message_errors.size();
+      if (distinct <= kMaxDistinctWarnings) {
+        char stamp[32];
+        std::snprintf(stamp, sizeof(stamp), "%.3f", image->header.stamp.toSec());
+        callbacks.warn(std::string("bad frame at t = ") + stamp + " s: " + error +
+                       " (counted; later ones with this error not shown)");
+      } else if (distinct == kMaxDistinctWarnings + 1) {
+        callbacks.warn("more distinct bad-frame errors: not shown, counted in the summary");
+      }
+    }
+  };
+  FrameSynchronizer sync(params.sync_queue_size, params.sync_slop_s, on_frame);
+
+  std::vector<std::string> wanted = {topics.image, topics.mask, topics.clusters};
+  try {
+    rosbag::View view(bag, rosbag::TopicQuery(wanted));
+    stats.messages_total = view.size();
+    for (auto it = view.begin(); it != view.end(); ++it) {
+      const rosbag::MessageInstance& m = *it;
+      ++stats.messages_read;
+      try {
+        if (m.getTopic() == topics.clusters) {
+          sync.addClusters(m.instantiate<sensor_msgs::PointCloud2>());
+        } else if (m.getTopic() == topics.image) {
+          sync.addImage(m.instantiate<sensor_msgs::Image>());
+        } else {
+          sync.addMask(m.instantiate<sensor_msgs::Image>());
+        }
+      } catch (const ros::Exception& e) {
+        // One message could not be deserialised (truncated record): skip it.
+        ++stats.undecodable_messages;
+        if (stats.undecodable_messages == 1 && callbacks.warn) {
+          callbacks.warn("cannot deserialise a message on " + m.getTopic() + " (" + e.what() +
+                         "); skipping such messages");
+        }
+      }
+      if (callbacks.progress && !callbacks.progress(stats, builder)) {
+        stats.interrupted = true;
+        break;
+      }
+    }
+  } catch (const std::exception& e) {
+    stats.damage = "the bag could not be read past message " +
+                   std::to_string(stats.messages_read) + " (" + e.what() + ")";
+  }
+  if (!stats.interrupted) sync.flush();  // the last frame of the bag counts too
+  return stats;
+}
+
+}  // namespace ros_io
+}  // namespace thermal_lidar_calibration

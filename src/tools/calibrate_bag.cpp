@@ -1,0 +1,230 @@
+// calibrate_bag: parameters -> bag -> shared ingest path -> calibrate() -> result file + summary.
+
+#include "thermal_lidar_calibration/tools/calibrate_bag.hpp"
+#include "thermal_lidar_calibration/ros/dataset_bag.hpp"
+
+#include "thermal_lidar_calibration/core/loss.hpp"
+#include "thermal_lidar_calibration/ros/bag_ingest.hpp"
+#include "thermal_lidar_calibration/app/calibration_summary.hpp"
+#include "thermal_lidar_calibration/app/camera_info_file.hpp"
+#include "thermal_lidar_calibration/app/progress_line.hpp"
+#include "thermal_lidar_calibration/app/result_file.hpp"
+#include "thermal_lidar_calibration/app/unknown_parameters.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <stdexcept>
+
+namespace thermal_lidar_calibration {
+namespace ros_io {
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+
+extern "C" void onSigint(int) { g_interrupted = true; }
+
+void warn(const std::string& text) {
+  std::fprintf(stderr, "calibrate_bag: warning: %s\n", text.c_str());
+}
+
+std::string joined(const std::vector<std::string>& items) {
+  std::string out;
+  for (const auto& s : items) out += (out.empty() ? "" : ", ") + s;
+  return out;
+}
+
+CoreParameters loadParameters(const CalibrateBagOptions& options) {
+  CoreParameters params;
+  if (!options.config.empty()) {
+    try {
+      const std::vector<std::string> unknown = unknownParameterKeys(yamlFileKeys(options.config));
+      if (!unknown.empty()) {
+        warn("--config " + options.config + ": unknown keys ignored (possible typo): " +
+             joined(unknown));
+      }
+      params = loadCoreParameters(*makeYamlParameterSource(options.config));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("--config " + options.config + ": " + e.what());
+    }
+  }
+  CalibrationConfig& c = params.calibration;
+  if (options.algorithm) {
+    c.algorithm = *options.algorithm == 1 ? Algorithm::kPlain : Algorithm::kOutlierRejection;
+  }
+  if (options.refine) c.refine.mode = *options.refine == "none" ? RefineMode::kNone : RefineMode::kLocal;
+  if (options.seed) c.seed = *options.seed;
+  if (options.threads) c.num_threads = *options.threads;
+  c.validate();
+  return params;
+}
+
+std::string algorithmText(const CalibrationConfig& c) {
+  return std::string("Algorithm ") + (c.algorithm == Algorithm::kPlain ? "1" : "2") +
+         ", refine " + (c.refine.mode == RefineMode::kNone ? "none" : "local") + ", seed " +
+         std::to_string(c.seed);
+}
+
+std::string noPairsMessage(const BagIngestStats& stats, const RejectionCounts& counts,
+                           const CoreParameters& params, const BagTopics& topics) {
+  if (stats.frames == 0) {
+    char slop[32];
+    std::snprintf(slop, sizeof(slop), "%g", params.sync_slop_s);
+    return "no synchronized frames: read " + std::to_string(stats.messages_read) +
+           " messages on " + topics.image + ", " + topics.mask + ", " + topics.clusters +
+           " but none matched within sync_slop = " + slop +
+           " s; check the header stamps or raise sync_slop in --config" +
+           (stats.damage.empty() ? "" : "; " + stats.damage);
+  }
+  std::string msg = "no pairs kept from " + std::to_string(stats.frames) +
+                    " synchronized frames (" + counts.summary() + ")";
+  if (!stats.bad_message_errors.empty()) {
+    std::uint64_t bad = 0;
+    for (const auto& kv : stats.bad_message_errors) bad += kv.second;
+    msg += "; " + std::to_string(bad) + " bad frames, e.g. " +
+           stats.bad_message_errors.begin()->first;
+  } else {
+    msg += "; check that masks and clusters see the same people";
+  }
+  if (!stats.damage.empty()) msg += "; " + stats.damage;
+  return msg;
+}
+
+std::vector<std::size_t> inlierIndices(const CalibrationResult& result) {
+  std::vector<std::size_t> used;
+  for (std::size_t i = 0; i < result.inliers.size(); ++i) {
+    if (result.inliers[i]) used.push_back(i);
+  }
+  return used;
+}
+
+}  // namespace
+
+int runCalibrateBag(const CalibrateBagOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  g_interrupted = false;
+  std::signal(SIGINT, onSigint);
+
+  CoreParameters params = loadParameters(options);
+  std::optional<Extrinsic> truth;
+  if (!options.truth.empty()) truth = readExtrinsicFile(options.truth);
+
+  BagTopics topics{options.image_topic, options.mask_topic, options.clusters_topic,
+                   options.camera_info_topic};
+  rosbag::Bag bag;
+  openBag(bag, options.bag);
+  const std::vector<BagTopicInfo> bag_topics = listBagTopics(bag);
+  checkBagTopics(bag_topics, topics, options.bag);
+  // A calibration_node dataset bag holds only frames the node already kept: the skip rule
+  // applied again would drop three of every four.
+  for (const BagTopicInfo& t : bag_topics) {
+    if (t.topic == DatasetBagTopics::kMarker && params.gate.skip_frames != 0) {
+      params.gate.skip_frames = 0;
+      if (!options.quiet) {
+        std::fprintf(stderr,
+                     "calibrate_bag: note: a calibration_node dataset bag (already gated): "
+                     "skip rule off\n");
+      }
+    }
+  }
+  const CameraModel camera = options.camera_info_file.empty()
+                                 ? cameraModelFromBag(bag, topics.camera_info, bag_topics)
+                                 : loadCameraInfoFile(options.camera_info_file);
+  if (!options.quiet) {
+    std::fprintf(stderr, "calibrate_bag: camera %s; %s\n", camera.describe().c_str(),
+                 algorithmText(params.calibration).c_str());
+  }
+
+  ProgressLine progress(stderr, !options.quiet);
+  DatasetBuilder builder(camera, params.gate);
+  IngestCallbacks callbacks;
+  callbacks.warn = warn;
+  callbacks.progress = [&](const BagIngestStats& s, const DatasetBuilder& b) {
+    progress.update("reading: " + std::to_string(s.messages_read) + "/" +
+                    std::to_string(s.messages_total) + " messages, " + std::to_string(s.frames) +
+                    " frames, " + std::to_string(b.pairs().size()) + " pairs kept");
+    return !g_interrupted;
+  };
+  const BagIngestStats stats = ingestBag(bag, topics, params, builder, callbacks);
+  bag.close();
+  progress.update("read: " + std::to_string(stats.messages_read) + " messages, " +
+                      std::to_string(stats.frames) + " frames, " +
+                      std::to_string(builder.pairs().size()) + " pairs kept",
+                  true);
+  progress.finish();
+  if (stats.interrupted) throw std::runtime_error("interrupted while reading the bag");
+  if (!stats.damage.empty() && !builder.pairs().empty()) warn(stats.damage + "; using what was read");
+  if (stats.undecodable_messages > 0) {
+    warn(std::to_string(stats.undecodable_messages) + " messages could not be deserialised");
+  }
+  if (builder.pairs().empty()) {
+    throw std::invalid_argument(noPairsMessage(stats, builder.counts(), params, topics));
+  }
+
+  const std::size_t frames = stats.frames;
+  const ProgressCallback on_progress = [&](const Progress& p) {
+    char buf[256];
+    std::snprintf(buf, sizeof(buf),
+                  "optimizing: %zu pairs kept of %zu frames | %s generation %d/%d | best loss %.4f px",
+                  builder.pairs().size(), frames, p.stage.c_str(), p.generation,
+                  p.generations_total, p.best_loss);
+    progress.update(buf);
+    return !g_interrupted;
+  };
+  CalibrationResult result;
+  try {
+    result = calibrate(camera, builder.pairs(), params.calibration, on_progress);
+  } catch (const std::invalid_argument& e) {
+    progress.finish();
+    throw std::invalid_argument(std::string("cannot calibrate on ") +
+                                std::to_string(builder.pairs().size()) + " pairs: " + e.what());
+  }
+  progress.finish();
+
+  ResultContext context;
+  context.lidar_frame = builder.lidarFrame().empty() ? "lidar" : builder.lidarFrame();
+  context.camera_frame = builder.cameraFrame().empty() ? "camera" : builder.cameraFrame();
+  context.source = options.bag;
+  for (const auto& pair : builder.pairs()) context.pair_stamps_s.push_back(pair.stamp_s);
+  context.parameters = params;
+  if (truth) {
+    TruthComparison cmp;
+    cmp.truth_file = options.truth;
+    cmp.rotation_error_rad = rotationErrorRad(result.extrinsic, *truth);
+    cmp.translation_error_m = translationErrorM(result.extrinsic, *truth);
+    LossConfig loss_config;
+    loss_config.behind_camera_penalty_c1 = params.calibration.behind_camera_penalty_c1;
+    loss_config.pixel_rule = PixelRule::kNearest;
+    const LossEvaluator evaluator(camera, builder.pairs(), loss_config);
+    cmp.truth_loss = evaluator.loss(*truth, inlierIndices(result));
+    context.truth = cmp;
+  }
+  writeResultFile(options.output, result, context);
+
+  SummaryInput summary;
+  summary.bag_path = options.bag;
+  summary.output_path = options.output;
+  summary.lidar_frame = context.lidar_frame;
+  summary.camera_frame = context.camera_frame;
+  summary.algorithm_text = algorithmText(params.calibration);
+  summary.messages_read = stats.messages_read;
+  summary.frames = stats.frames;
+  summary.counts = builder.counts();
+  summary.result = result;
+  summary.truth = context.truth;
+  summary.total_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!options.quiet || result.stopped) {
+    std::fputs(formatCalibrationSummary(summary).c_str(), stdout);
+    std::fflush(stdout);
+  }
+  if (result.stopped) {
+    throw std::runtime_error("interrupted; the best result so far was written to " +
+                             options.output);
+  }
+  return 0;
+}
+
+}  // namespace ros_io
+}  // namespace thermal_lidar_calibration
