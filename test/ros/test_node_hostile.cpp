@@ -1,0 +1,160 @@
+// rostest node_hostile.test: hostile input to a running calibration_node while a generated bag
+// plays. Each case publishes what once ended or hung the node, then checks that the node is
+// still there (its ~status keeps coming, its services answer) and that it said what was wrong.
+// The cases run in order: the stamp cases while the node collects, the overlay case once it
+// has a result.
+
+#include <thermal_lidar_calibration/CalibrationStatus.h>
+
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <rosgraph_msgs/Log.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <std_srvs/Trigger.h>
+
+#include <functional>
+#include <mutex>
+#include <string>
+#include <vector>
+
+using thermal_lidar_calibration::CalibrationStatus;
+
+namespace {
+
+struct Observed {
+  std::mutex mutex;
+  CalibrationStatus last_status;
+  int status_messages = 0;
+  int overlay_images = 0;
+  std::vector<std::string> node_warnings;  // /rosout WARN+ from calibration_node
+};
+Observed g_observed;
+
+void onStatus(const CalibrationStatus::ConstPtr& msg) {
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  g_observed.last_status = *msg;
+  ++g_observed.status_messages;
+}
+
+void onOverlay(const sensor_msgs::Image::ConstPtr&) {
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  ++g_observed.overlay_images;
+}
+
+void onRosout(const rosgraph_msgs::Log::ConstPtr& msg) {
+  if (msg->level < rosgraph_msgs::Log::WARN) return;
+  if (msg->name.find("calibration_node") == std::string::npos) return;
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  g_observed.node_warnings.push_back(msg->msg);
+}
+
+bool waitFor(double timeout_s, const std::function<bool()>& predicate) {
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
+  while (ros::ok() && ros::WallTime::now() < end) {
+    {
+      std::lock_guard<std::mutex> lock(g_observed.mutex);
+      if (predicate()) return true;
+    }
+    ros::WallDuration(0.05).sleep();
+  }
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  return predicate();
+}
+
+// True when the node said something containing every one of `parts` on /rosout.
+std::function<bool()> said(std::vector<std::string> parts) {
+  return [parts] {
+    for (const auto& w : g_observed.node_warnings) {
+      bool all = true;
+      for (const auto& p : parts) all = all && w.find(p) != std::string::npos;
+      if (all) return true;
+    }
+    return false;
+  };
+}
+
+std::string warnings() {
+  std::string s;
+  for (const auto& w : g_observed.node_warnings) s += "\n  " + w;
+  return s;
+}
+
+// The node is up: ~status keeps coming and ~save answers (success or not).
+void expectAlive(const std::string& after) {
+  int before = 0;
+  {
+    std::lock_guard<std::mutex> lock(g_observed.mutex);
+    before = g_observed.status_messages;
+  }
+  EXPECT_TRUE(waitFor(5.0, [&] { return g_observed.status_messages > before + 2; }))
+      << "~status stopped after " << after;
+  std_srvs::Trigger trigger;
+  ros::ServiceClient save =
+      ros::NodeHandle().serviceClient<std_srvs::Trigger>("calibration_node/save");
+  EXPECT_TRUE(save.waitForExistence(ros::Duration(5.0))) << "~save gone after " << after;
+  EXPECT_TRUE(save.call(trigger)) << "~save did not answer after " << after;
+}
+
+sensor_msgs::Image monoImage(const ros::Time& stamp, int width, int height) {
+  sensor_msgs::Image img;
+  img.header.stamp = stamp;
+  img.header.frame_id = "thermal_optical";
+  img.width = width;
+  img.height = height;
+  img.encoding = "mono8";
+  img.step = static_cast<std::uint32_t>(width);
+  img.data.assign(static_cast<std::size_t>(img.step) * height, 0);
+  return img;
+}
+
+sensor_msgs::PointCloud2 cloudHeader(const ros::Time& stamp) {
+  sensor_msgs::PointCloud2 c;
+  c.header.stamp = stamp;
+  c.header.frame_id = "velodyne";
+  return c;
+}
+
+}  // namespace
+
+// A stamp from a sensor with an unset clock (0) or a corrupt one (4294967295, 2.2e9) beside the
+// drive's stamps: ApproximateTime threw "Duration is out of dual 32-bit range" out of the
+// callback and the node exited. Now each is dropped with a warning naming topic and stamp.
+TEST(NodeHostile, FarApartStampsDoNotEndTheNode) {
+  ros::NodeHandle nh;
+  auto image_pub = nh.advertise<sensor_msgs::Image>("thermal/image_raw", 10);
+  auto mask_pub = nh.advertise<sensor_msgs::Image>("thermal/human_mask", 10);
+  auto cloud_pub = nh.advertise<sensor_msgs::PointCloud2>("lidar/human_clusters", 10);
+  ASSERT_TRUE(waitFor(60.0, [] { return g_observed.status_messages > 0; })) << "no ~status";
+  ASSERT_TRUE(waitFor(10.0, [&] {
+    return image_pub.getNumSubscribers() > 0 && mask_pub.getNumSubscribers() > 0 &&
+           cloud_pub.getNumSubscribers() > 0;
+  }));
+  ros::WallDuration(0.5).sleep();
+  const ros::Time far[] = {ros::Time(4294967295u, 0), ros::Time(0, 0), ros::Time(2200000000u, 0)};
+  for (int round = 0; round < 3 && ros::ok(); ++round) {
+    for (const ros::Time& stamp : far) {
+      mask_pub.publish(monoImage(stamp, 640, 512));
+      image_pub.publish(monoImage(stamp, 640, 512));
+      cloud_pub.publish(cloudHeader(stamp));
+      ros::WallDuration(0.1).sleep();
+    }
+  }
+  expectAlive("messages with far-apart stamps");
+  EXPECT_TRUE(waitFor(5.0, said({"/thermal/human_mask", "4294967295"}))) << warnings();
+}
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "node_hostile_test");
+  ros::NodeHandle nh;
+  ros::Subscriber status_sub = nh.subscribe("calibration_node/status", 100, onStatus);
+  ros::Subscriber overlay_sub = nh.subscribe("calibration_node/overlay", 10, onOverlay);
+  ros::Subscriber rosout_sub = nh.subscribe("/rosout", 1000, onRosout);
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  const int result = RUN_ALL_TESTS();
+  spinner.stop();
+  ros::shutdown();
+  return result;
+}
