@@ -28,6 +28,9 @@ std::string stampString(const ros::Time& stamp) {
 }
 
 StampGuard::Decision StampGuard::check(const ros::Time& stamp) {
+  if (stamp.isZero()) {
+    return {Verdict::kRefuse, "stamp 0 (the stamp of a sensor whose clock is not set)"};
+  }
   if (stamp.nsec >= kNsecPerSec) {
     return {Verdict::kRefuse, "stamp " + std::to_string(stamp.sec) + " s + " +
                                   std::to_string(stamp.nsec) +

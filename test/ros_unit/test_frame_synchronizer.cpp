@@ -139,6 +139,10 @@ TEST(FrameSynchronizer, EndOfTimeStampsAreDropped) {
   FrameSynchronizer::AddOutcome outcome;
   ASSERT_NO_THROW(outcome = sync.addImage(last));
   EXPECT_FALSE(outcome.added);
+  auto unset = boost::make_shared<sensor_msgs::Image>();  // stamp 0: a clock not set
+  ASSERT_NO_THROW(outcome = sync.addImage(unset));
+  EXPECT_FALSE(outcome.added);
+  EXPECT_FALSE(sync.dataTime().has_value());
   auto bad_nsec = boost::make_shared<sensor_msgs::Image>();
   bad_nsec->header.stamp.sec = 100;
   bad_nsec->header.stamp.nsec = 4000000000u;  // not normalised: a corrupt header

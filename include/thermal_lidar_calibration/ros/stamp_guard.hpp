@@ -5,9 +5,10 @@
 // beside 2.2e9) ends the caller with "Duration is out of dual 32-bit range". A sensor with an
 // unset clock is ordinary in the field, so such a message is refused with a reason instead.
 //
-// The rule: a stamp is accepted when it lies within kMaxJumpS of the latest accepted stamp (the
-// data's time). Accepted stamps then never spread by more than kMaxJumpS per message held, far
-// below the 68 years at which the arithmetic overflows. A single stray message cannot fix the
+// Stamp 0 (a clock not set), a stamp at the end of ROS time and one with nsec >= 1e9 are refused
+// outright. Otherwise a stamp is accepted when it lies within kMaxJumpS of the latest accepted
+// stamp (the data's time). Accepted stamps then never spread by more than kMaxJumpS per message
+// held, far below the 68 years at which the arithmetic overflows. A single stray message cannot fix the
 // time base: when kMessagesToMove consecutive refused messages agree with each other (the
 // data really moved to another epoch, e.g. a second bag or a clock set late), the base moves to
 // them and the caller restarts the synchronizer.
