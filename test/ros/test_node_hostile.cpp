@@ -144,12 +144,75 @@ TEST(NodeHostile, FarApartStampsDoNotEndTheNode) {
   EXPECT_TRUE(waitFor(5.0, said({"/thermal/human_mask", "4294967295"}))) << warnings();
 }
 
+// ~overlay_cloud once a result exists (the overlay then decodes the full cloud): a declared
+// 2^32-1 x 2^32-1 cloud with 16 bytes spun the callback thread at 100 % (~status and ~save
+// stopped), width 1e8 with 16 bytes segfaulted, fields x, x, z (no y) ended the node. Each is
+// now refused by the ingest path's cloud check, and the overlay keeps coming.
+TEST(NodeHostile, MalformedOverlayCloudAfterTheResult) {
+  ASSERT_TRUE(waitFor(240.0, [] { return g_observed.last_status.state_name == "done"; }))
+      << "no result: " << g_observed.last_status;
+  ros::NodeHandle nh;
+  ros::Subscriber overlay_sub = nh.subscribe("calibration_node/overlay", 10, onOverlay);
+  auto image_pub = nh.advertise<sensor_msgs::Image>("thermal/image_raw", 10);
+  auto cloud_pub = nh.advertise<sensor_msgs::PointCloud2>("calibration_node/overlay_cloud", 10);
+  ASSERT_TRUE(waitFor(10.0, [&] {
+    return image_pub.getNumSubscribers() > 0 && cloud_pub.getNumSubscribers() > 0 &&
+           overlay_sub.getNumPublishers() > 0;
+  }));
+  ros::WallDuration(0.5).sleep();
+
+  sensor_msgs::PointField f;
+  f.datatype = sensor_msgs::PointField::FLOAT32;
+  f.count = 1;
+  std::vector<sensor_msgs::PointCloud2> bad;
+  {
+    sensor_msgs::PointCloud2 c = cloudHeader(ros::Time::now());
+    for (const char* name : {"x", "y", "z"}) {
+      f.name = name;
+      c.fields.push_back(f);
+      f.offset += 4;
+    }
+    c.point_step = 16;
+    c.data.assign(16, 0);
+    c.width = c.height = 0xFFFFFFFFu;
+    c.row_step = 0xFFFFFFF0u;
+    bad.push_back(c);
+    c.width = 100000000u;
+    c.height = 1;
+    c.row_step = c.width * c.point_step;
+    bad.push_back(c);
+    c.width = 1;
+    c.row_step = 16;
+    c.fields[1].name = "x";  // x, x, z
+    bad.push_back(c);
+  }
+  for (const auto& cloud : bad) {
+    int overlays = 0;
+    {
+      std::lock_guard<std::mutex> lock(g_observed.mutex);
+      overlays = g_observed.overlay_images;
+    }
+    cloud_pub.publish(cloud);
+    ros::WallDuration(0.3).sleep();
+    // The overlay decodes the cloud when the next image arrives (and someone watches ~overlay).
+    for (int k = 0; k < 3; ++k) {
+      image_pub.publish(monoImage(ros::Time::now(), 640, 512));
+      ros::WallDuration(0.2).sleep();
+    }
+    const std::string what = std::to_string(cloud.width) + " x " + std::to_string(cloud.height) +
+                             " cloud with " + std::to_string(cloud.data.size()) + " bytes";
+    EXPECT_TRUE(waitFor(10.0, [&] { return g_observed.overlay_images > overlays; }))
+        << "no ~overlay after a " << what;
+    expectAlive("a " + what + " on ~overlay_cloud");
+  }
+  EXPECT_TRUE(waitFor(5.0, said({"overlay_cloud", "row_step"}))) << warnings();
+}
+
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, "node_hostile_test");
   ros::NodeHandle nh;
   ros::Subscriber status_sub = nh.subscribe("calibration_node/status", 100, onStatus);
-  ros::Subscriber overlay_sub = nh.subscribe("calibration_node/overlay", 10, onOverlay);
   ros::Subscriber rosout_sub = nh.subscribe("/rosout", 1000, onRosout);
   ros::AsyncSpinner spinner(2);
   spinner.start();
