@@ -8,6 +8,7 @@
 #include "thermal_lidar_calibration/ros/node_parameter_source.hpp"
 #include "thermal_lidar_calibration/app/result_file.hpp"
 #include "thermal_lidar_calibration/app/unknown_parameters.hpp"
+#include "thermal_lidar_calibration/node/parameter_catalog.hpp"
 
 #include <unistd.h>
 
@@ -87,8 +88,9 @@ CalibrationNode::~CalibrationNode() {
 }
 
 void CalibrationNode::readParameters() {
-  params_ = loadNodeParameters(private_nh_);  // throws std::invalid_argument, the node exits
-  for (const auto& key : unknownParameterKeys(nodeParameterKeys(private_nh_))) {
+  // Throws std::invalid_argument: the node does not start.
+  params_ = loadNodeParameters(*makeNodeHandleParameterSource(private_nh_));
+  for (const auto& key : unknownParameterKeys(nodeParameterKeys(private_nh_), knownParameterKeys())) {
     ROS_WARN("unknown parameter ~%s ignored (typo? see config/default.yaml)", key.c_str());
   }
   std::ostringstream s;
