@@ -5,10 +5,10 @@
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "calibration_node");
-  ros::NodeHandle private_nh("~");  // outlives the node: a start-up error can still be logged
+  ros::NodeHandle nh, private_nh("~");  // outlive the node: a start-up error can still be logged
   std::unique_ptr<thermal_lidar_calibration::ros_io::CalibrationNode> node;
   try {
-    node = std::make_unique<thermal_lidar_calibration::ros_io::CalibrationNode>(private_nh);
+    node = std::make_unique<thermal_lidar_calibration::ros_io::CalibrationNode>(nh, private_nh);
   } catch (const std::exception& e) {
     ROS_FATAL("calibration_node cannot start: %s", e.what());
     return 1;
