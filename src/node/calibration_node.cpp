@@ -21,6 +21,7 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   clusters_topic_ = nh_.resolveName("lidar/human_clusters");
   camera_info_topic_ = nh_.resolveName("thermal/camera_info");
 
+  diagnostics_ = std::make_unique<NodeDiagnostics>(nh_, private_nh_);
   tf_publisher_ = std::make_unique<CalibratedTfPublisher>(params_.child_frame);
   status_pub_ = private_nh_.advertise<CalibrationStatus>("status", 1, /*latch=*/true);
   overlay_ = std::make_unique<OverlayPublisher>(private_nh_, params_.overlay_max_points,
@@ -99,6 +100,7 @@ void CalibrationNode::onTimer(const ros::WallTimerEvent& /*event*/) {
     }
     logProgress(false);
     publishStatus();
+    diagnostics_->update();
   });
 }
 
