@@ -31,10 +31,10 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     camera_info_msg_ = cameraInfoFromModel(camera);
     createBuilder(camera, params_.camera_info_file);
   }
-  if (!params_.dataset_bag.empty()) {
-    if (params_.resume) resumeDataset();
-    dataset_writer_ = std::make_unique<DatasetBagWriter>(params_.dataset_bag, params_.resume);
-  }
+  if (!params_.dataset_bag.empty() && params_.resume) resumeDataset();
+  recorder_ = std::make_unique<DatasetRecorder>(params_.dataset_bag, params_.resume, pairs_resumed_);
+  diagnostics_->add("dataset recording",
+                    [this](NodeDiagnostics::Status& status) { recorder_->diagnose(status); });
   if (!builder_) {
     camera_info_sub_ = nh_.subscribe("thermal/camera_info", 1, &CalibrationNode::onCameraInfo, this);
   }

@@ -136,12 +136,12 @@ void CalibrationNode::onFrame(const sensor_msgs::Image::ConstPtr& image,
   stored_stamps_ns_.insert(static_cast<long long>(image->header.stamp.toNSec()));
   camera_frame_ = builder_->cameraFrame();
   lidar_frame_ = builder_->lidarFrame();
-  if (dataset_writer_) {
-    try {
-      dataset_writer_->write(*image, *mask, *clusters, *camera_info_msg_);
-    } catch (const std::exception& e) {
-      ROS_ERROR_THROTTLE(5.0, "kept pair not recorded: %s", e.what());
-    }
+  const bool was_recording = recorder_->recording();
+  recorder_->record(*image, *mask, *clusters, *camera_info_msg_);
+  if (was_recording && !recorder_->recording()) {  // this write failed: say so everywhere now
+    state_message_ = "recording stopped: " + recorder_->stopReason();
+    publishStatus();
+    diagnostics_->publishNow();
   }
   ROS_DEBUG("kept frame %.3f (%d people): %s", image->header.stamp.toSec(), outcome.mask_people,
             progressLine().c_str());

@@ -27,15 +27,7 @@ bool CalibrationNode::onReset(std_srvs::Trigger::Request& /*req*/, std_srvs::Tri
   result_.reset();
   result_published_ = true;
   overlay_->setEstimate(std::nullopt);
-  std::string bag_note;
-  if (dataset_writer_) {
-    try {
-      dataset_writer_->clear();
-      bag_note = " and deleted " + dataset_writer_->path();
-    } catch (const std::exception& e) {
-      bag_note = "; " + std::string(e.what());
-    }
-  }
+  const std::string bag_note = recorder_->enabled() ? "; " + recorder_->clear() : "";
   res.success = true;
   res.message = "reset: dropped " + std::to_string(n) + " pairs" + bag_note;
   ROS_INFO("%s", res.message.c_str());
@@ -44,9 +36,12 @@ bool CalibrationNode::onReset(std_srvs::Trigger::Request& /*req*/, std_srvs::Tri
 }
 
 bool CalibrationNode::onSave(std_srvs::Trigger::Request& /*req*/, std_srvs::Trigger::Response& res) {
-  const std::string dataset =
-      dataset_writer_ ? "; the dataset bag " + dataset_writer_->path() + " holds every kept pair"
-                      : "";
+  std::string dataset;
+  if (recorder_->enabled()) {
+    dataset = "; the dataset bag " + recorder_->path() + " holds " +
+              std::to_string(recorder_->pairsInBag()) + " pairs" +
+              (recorder_->recording() ? "" : " (recording stopped: " + recorder_->stopReason() + ")");
+  }
   if (!result_) {
     res.success = false;
     res.message = "no result yet (" + std::string(stateName(state_)) + ", " + progressLine() + ")" +

@@ -100,6 +100,9 @@ void CalibrationNode::publishStatus() {
   }
   msg.pairs_resumed = static_cast<std::uint32_t>(pairs_resumed_);
   msg.dataset_bag = params_.dataset_bag;
+  msg.recording = recorder_ && recorder_->recording();
+  msg.pairs_in_bag = recorder_ ? static_cast<std::uint32_t>(recorder_->pairsInBag()) : 0;
+  msg.recording_error = recorder_ ? recorder_->stopReason() : "";
   msg.output_file = params_.output_file;
   msg.child_frame = result_ && result_published_ ? published_child_ : "";
   status_pub_.publish(msg);

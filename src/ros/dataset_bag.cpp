@@ -17,6 +17,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <stdexcept>
 
 namespace thermal_lidar_calibration {
@@ -97,6 +98,27 @@ void writeMessages(rosbag::Bag& bag, const sensor_msgs::Image& image,
   bag.write(DatasetBagTopics::kMarker, time, marker);
 }
 
+// Opens `path` in `mode`, writes one pair and closes. rosbag::Bag's destructor writes the index
+// of a bag still open; on a full disk that write throws again, and a throwing destructor ends the
+// process (std::terminate). So the bag is closed explicitly, and after a failure the object is
+// abandoned instead of destroyed: a small leak per failed write, and the node stops recording
+// after the first.
+void writePairToBag(const std::string& path, rosbag::bagmode::BagMode mode,
+                    const sensor_msgs::Image& image, const sensor_msgs::Image& mask,
+                    const sensor_msgs::PointCloud2& clusters,
+                    const sensor_msgs::CameraInfo& camera_info) {
+  auto bag = std::make_unique<rosbag::Bag>();
+  try {
+    bag->open(path, mode);
+    bag->setCompression(rosbag::compression::LZ4);
+    writeMessages(*bag, image, mask, clusters, camera_info);
+    bag->close();
+  } catch (...) {
+    static_cast<void>(bag.release());
+    throw;
+  }
+}
+
 }  // namespace
 
 DatasetBagWriter::DatasetBagWriter(std::string path, bool append) : path_(std::move(path)) {
@@ -115,25 +137,23 @@ DatasetBagWriter::DatasetBagWriter(std::string path, bool append) : path_(std::m
 void DatasetBagWriter::write(const sensor_msgs::Image& image, const sensor_msgs::Image& mask,
                              const sensor_msgs::PointCloud2& clusters,
                              const sensor_msgs::CameraInfo& camera_info) {
-  try {
-    if (exists_) {
-      appendWithJournal(image, mask, clusters, camera_info);
-    } else {
-      const std::string tmp = path_ + ".tmp";
-      {
-        rosbag::Bag bag(tmp, rosbag::bagmode::Write);
-        bag.setCompression(rosbag::compression::LZ4);
-        writeMessages(bag, image, mask, clusters, camera_info);
-        bag.close();
-      }
-      if (std::rename(tmp.c_str(), path_.c_str()) != 0) {
-        fail(path_, std::string("cannot rename ") + tmp + ": " + std::strerror(errno));
-      }
-      exists_ = true;
-    }
-  } catch (const rosbag::BagException& e) {
-    fail(path_, e.what());
+  if (exists_) {
+    appendWithJournal(image, mask, clusters, camera_info);
+    return;
   }
+  const std::string tmp = path_ + ".tmp";
+  try {
+    writePairToBag(tmp, rosbag::bagmode::Write, image, mask, clusters, camera_info);
+  } catch (const std::exception& e) {
+    std::remove(tmp.c_str());
+    fail(path_, std::string("cannot write ") + tmp + ": " + e.what());
+  }
+  if (std::rename(tmp.c_str(), path_.c_str()) != 0) {
+    const int error = errno;
+    std::remove(tmp.c_str());
+    fail(path_, std::string("cannot rename ") + tmp + ": " + std::strerror(error));
+  }
+  exists_ = true;
 }
 
 void DatasetBagWriter::appendWithJournal(const sensor_msgs::Image& image,
@@ -168,16 +188,26 @@ void DatasetBagWriter::appendWithJournal(const sensor_msgs::Image& image,
     std::ofstream out(journal_tmp, std::ios::binary | std::ios::trunc);
     out.write(journal.data(), static_cast<std::streamsize>(journal.size()));
     out.close();
-    if (!out) fail(path_, "cannot write the journal " + journal_tmp);
+    if (!out) {
+      std::remove(journal_tmp.c_str());
+      fail(path_, "cannot write the journal " + journal_tmp + " (disk full?)");
+    }
   }
   if (std::rename(journal_tmp.c_str(), journal_path.c_str()) != 0) {
     fail(path_, "cannot rename the journal: " + std::string(std::strerror(errno)));
   }
-  {
-    rosbag::Bag bag(path_, rosbag::bagmode::Append);
-    bag.setCompression(rosbag::compression::LZ4);
-    writeMessages(bag, image, mask, clusters, camera_info);
-    bag.close();
+  try {
+    writePairToBag(path_, rosbag::bagmode::Append, image, mask, clusters, camera_info);
+  } catch (const std::exception& e) {
+    // Put the bag back as it was before this append (every earlier pair readable).
+    std::string restored = "the bag was restored to its earlier pairs";
+    try {
+      recoverDatasetBag(path_);
+    } catch (const std::exception& r) {
+      restored = std::string("restoring it failed too (") + r.what() +
+                 "); the journal is kept, start with ~resume to restore it";
+    }
+    fail(path_, std::string("cannot append: ") + e.what() + "; " + restored);
   }
   std::remove(journal_path.c_str());
 }

@@ -1,19 +1,23 @@
-// rostest node_hostile.test: hostile input to a running calibration_node while a generated bag
-// plays. Each case publishes what once ended or hung the node, then checks that the node is
+// rostests node_hostile.test (NodeHostile.*) and node_disk_full.test (NodeDiskFull.*): hostile
+// input to a running calibration_node while a generated bag plays. Each case publishes what once ended or hung the node, then checks that the node is
 // still there (its ~status keeps coming, its services answer) and that it said what was wrong.
 // The cases run in order: the stamp cases while the node collects, the overlay case once it
 // has a result.
 
 #include <thermal_lidar_calibration/CalibrationStatus.h>
 
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
 #include <rosgraph_msgs/Log.h>
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <std_srvs/Trigger.h>
 
 #include <functional>
+#include <map>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -28,6 +32,7 @@ struct Observed {
   int status_messages = 0;
   int overlay_images = 0;
   std::vector<std::string> node_warnings;  // /rosout WARN+ from calibration_node
+  std::map<std::string, diagnostic_msgs::DiagnosticStatus> diagnostics;  // latest, by name
 };
 Observed g_observed;
 
@@ -40,6 +45,11 @@ void onStatus(const CalibrationStatus::ConstPtr& msg) {
 void onOverlay(const sensor_msgs::Image::ConstPtr&) {
   std::lock_guard<std::mutex> lock(g_observed.mutex);
   ++g_observed.overlay_images;
+}
+
+void onDiagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr& msg) {
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  for (const auto& status : msg->status) g_observed.diagnostics[status.name] = status;
 }
 
 void onRosout(const rosgraph_msgs::Log::ConstPtr& msg) {
@@ -208,12 +218,60 @@ TEST(NodeHostile, MalformedOverlayCloudAfterTheResult) {
   EXPECT_TRUE(waitFor(5.0, said({"overlay_cloud", "row_step"}))) << warnings();
 }
 
+// A disk that fills during a dataset append: rosbag::BagIOException ended the node (abort). Now
+// recording stops, ~status, /diagnostics and /rosout say so with the path and the free space,
+// the node keeps collecting in memory and finishes, and the bag holds exactly the pairs
+// ~status says it holds.
+TEST(NodeDiskFull, RecordingStopsAndCollectingGoesOn) {
+  const std::string bag = ros::NodeHandle("~").param<std::string>("dataset_bag", "");
+  ASSERT_FALSE(bag.empty());
+  ASSERT_TRUE(waitFor(150.0, [] { return !g_observed.last_status.recording_error.empty(); }))
+      << "recording never stopped: " << g_observed.last_status;
+  {
+    std::lock_guard<std::mutex> lock(g_observed.mutex);
+    EXPECT_FALSE(g_observed.last_status.recording);
+    EXPECT_NE(g_observed.last_status.recording_error.find(bag), std::string::npos)
+        << g_observed.last_status.recording_error;
+    EXPECT_NE(g_observed.last_status.recording_error.find("free"), std::string::npos)
+        << g_observed.last_status.recording_error;
+  }
+  EXPECT_TRUE(waitFor(5.0, said({"recording stopped", bag, "free"}))) << warnings();
+  EXPECT_TRUE(waitFor(10.0, [&] {
+    for (const auto& entry : g_observed.diagnostics) {
+      const diagnostic_msgs::DiagnosticStatus& s = entry.second;
+      if (s.name.find("dataset recording") != std::string::npos &&
+          s.level == diagnostic_msgs::DiagnosticStatus::ERROR) {
+        for (const auto& kv : s.values) {
+          if (kv.value.find(bag) != std::string::npos) return true;
+        }
+      }
+    }
+    return false;
+  })) << "no ERROR on /diagnostics for the dataset recording";
+
+  ASSERT_TRUE(waitFor(240.0, [] { return g_observed.last_status.state_name == "done"; }))
+      << "the node did not finish: " << g_observed.last_status;
+  CalibrationStatus status;
+  {
+    std::lock_guard<std::mutex> lock(g_observed.mutex);
+    status = g_observed.last_status;
+  }
+  EXPECT_GE(status.pairs_kept, status.pairs_required);
+  EXPECT_LT(status.pairs_in_bag, status.pairs_kept);
+  EXPECT_GE(status.pairs_in_bag, 1u);
+  // The bag on disk is readable and holds what ~status says.
+  rosbag::Bag reader(bag, rosbag::bagmode::Read);
+  rosbag::View markers(reader, rosbag::TopicQuery("/thermal_lidar_calibration/dataset_pair"));
+  EXPECT_EQ(markers.size(), status.pairs_in_bag);
+}
+
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, "node_hostile_test");
   ros::NodeHandle nh;
   ros::Subscriber status_sub = nh.subscribe("calibration_node/status", 100, onStatus);
   ros::Subscriber rosout_sub = nh.subscribe("/rosout", 1000, onRosout);
+  ros::Subscriber diagnostics_sub = nh.subscribe("/diagnostics", 100, onDiagnostics);
   ros::AsyncSpinner spinner(2);
   spinner.start();
   const int result = RUN_ALL_TESTS();

@@ -12,6 +12,7 @@
 #include "thermal_lidar_calibration/ros/dataset_bag.hpp"
 #include "thermal_lidar_calibration/app/fault_throttle.hpp"
 #include "thermal_lidar_calibration/node/callback_guard.hpp"
+#include "thermal_lidar_calibration/node/dataset_recorder.hpp"
 #include "thermal_lidar_calibration/node/node_diagnostics.hpp"
 #include "thermal_lidar_calibration/ros/frame_synchronizer.hpp"
 #include "thermal_lidar_calibration/node/node_parameters.hpp"
@@ -95,7 +96,7 @@ class CalibrationNode {
 
   std::unique_ptr<DatasetBuilder> builder_;  // holds the camera model once intrinsics are known
   std::optional<sensor_msgs::CameraInfo> camera_info_msg_;  // written with each pair
-  std::unique_ptr<DatasetBagWriter> dataset_writer_;
+  std::unique_ptr<DatasetRecorder> recorder_;  // ~dataset_bag (a failed write stops recording)
   std::unique_ptr<NodeDiagnostics> diagnostics_;  // /diagnostics; parts add their tasks
   std::set<long long> stored_stamps_ns_;  // image stamps of pairs in the dataset (no duplicates)
   std::size_t pairs_resumed_ = 0;
