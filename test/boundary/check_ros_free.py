@@ -3,7 +3,7 @@
 
 Debian installs ROS headers in /usr/include, so a ROS include in src/core compiles whatever the
 target's include paths say. This check runs the preprocessor on every source and header of the
-ROS-free parts (core, app, synthetic, detection: src/<part>/ and
+ROS-free parts (core, app, synthetic, detection, detection_tool: src/<part>/ and
 include/thermal_lidar_calibration/<part>/) with only the include paths those parts use, lists
 every header each one reaches (g++ -H), and reports the include chain to the first ROS header:
 
@@ -26,7 +26,7 @@ import subprocess
 import sys
 import tempfile
 
-ROS_FREE_PARTS = ["core", "app", "synthetic", "detection"]
+ROS_FREE_PARTS = ["core", "app", "synthetic", "detection", "detection_tool"]
 ADAPTER_PARTS = ["ros", "node", "tools"]
 PACKAGE = "thermal_lidar_calibration"
 EXTENSIONS = (".cpp", ".cc", ".hpp", ".h")
