@@ -6,10 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <map>
 #include <random>
-#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -158,7 +156,6 @@ SyntheticFrame SyntheticRig::renderSnapshot(const std::vector<WorldObject>& obje
     frame.cluster_points.push_back(r.point);
     frame.cluster_labels.push_back(obj.isPerson() ? obj.person_id : kFalseClusterLabelBase + obj.clutter_id);
   }
-  frame.cluster_people = static_cast<int>(clusterSizes(frame.cluster_labels).size());
 
   // Mask: ids 1..N by increasing person id.
   std::vector<int> mask_id(objects.size(), 0);
@@ -183,19 +180,10 @@ SyntheticFrame SyntheticRig::renderSnapshot(const std::vector<WorldObject>& obje
   }
   perturbMaskEdges(frame.mask, noise.mask_edge_px, rng_noise);
   if (unit(rng_noise) < noise.false_mask_rate) addFalseMaskBlob(frame.mask, next_id, rng_noise);
-  if (config_.mask_style == MaskStyle::kBinary) {
-    frame.mask.setTo(255, frame.mask != 0);
-    frame.mask_people = countMaskPeople(frame.mask);
-  } else {
-    std::set<int> ids;
-    for (int v = 0; v < frame.mask.rows; ++v) {
-      const std::uint8_t* m = frame.mask.ptr<std::uint8_t>(v);
-      for (int u = 0; u < frame.mask.cols; ++u) {
-        if (m[u] != 0) ids.insert(m[u]);
-      }
-    }
-    frame.mask_people = static_cast<int>(ids.size());
-  }
+  if (config_.mask_style == MaskStyle::kBinary) frame.mask.setTo(255, frame.mask != 0);
+  // Counted as the ingest path counts them: a single-id mask split in two (a person cut by a
+  // post) is two people to the consumer, so it is two here too.
+  frame.counts = countPeople(frame.mask, frame.cluster_labels);
 
   const double drift = 3.0 * std::sin(0.05 * stamp_s);
   frame.image = renderer_->renderImage(owners, objects, config_.image_depth, noise.image_noise, drift, rng_image);
@@ -213,24 +201,13 @@ SyntheticFrame SyntheticRig::renderSnapshot(const std::vector<WorldObject>& obje
   return frame;
 }
 
-int countGatedPairs(const std::vector<int>& mask_people, const std::vector<int>& cluster_people, int max_people,
-                    int skip_frames) {
-  if (max_people < 1) return 0;  // no count is in [1, max_people]: nothing is kept
-  GateConfig gate_config;
-  gate_config.max_people = max_people;
-  gate_config.skip_frames = std::max(skip_frames, 0);
+RejectionCounts gateFrames(const std::vector<PeopleCounts>& frames, const GateConfig& gate_config) {
   FrameGate gate(gate_config);
-  // The counts come with no clusters to size: no frame is rejected as a small cluster.
-  constexpr int kNoSmallCluster = std::numeric_limits<int>::max();
-  for (std::size_t i = 0; i < std::min(mask_people.size(), cluster_people.size()); ++i) {
+  for (const PeopleCounts& counts : frames) {
     if (gate.consumeSkip()) continue;
-    gate.decide(mask_people[i], cluster_people[i], kNoSmallCluster);
+    gate.decide(counts.mask_people, counts.cluster_people, counts.smallest_cluster_points);
   }
-  return static_cast<int>(gate.counts()[GateDecision::kKept]);
-}
-
-int countEqualFrames(const std::vector<int>& mask_people, const std::vector<int>& cluster_people, int max_people) {
-  return countGatedPairs(mask_people, cluster_people, max_people, 0);
+  return gate.counts();
 }
 
 }  // namespace synthetic

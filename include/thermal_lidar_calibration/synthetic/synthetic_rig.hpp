@@ -3,6 +3,8 @@
 // mask, with the detector behaviour and noise of the configuration. ROS-free; frame i depends
 // only on (seed, i), so frames can be rendered in any order or in parallel.
 
+#include "thermal_lidar_calibration/core/frame_gate.hpp"
+#include "thermal_lidar_calibration/core/person_counter.hpp"
 #include "thermal_lidar_calibration/synthetic/noise_model.hpp"
 #include "thermal_lidar_calibration/synthetic/rig_presets.hpp"
 #include "thermal_lidar_calibration/synthetic/scene.hpp"
@@ -64,8 +66,7 @@ struct SyntheticFrame {
   std::vector<std::int32_t> cluster_labels;     // person id (false clusters: 1000 + clutter id)
   std::vector<Eigen::Vector3f> full_points;     // optional decimated full scan
   std::vector<float> full_intensity;
-  int mask_people = 0;     // as a consumer counts them (distinct ids / components)
-  int cluster_people = 0;  // distinct labels
+  PeopleCounts counts;     // as the ingest path counts them (core countPeople)
   std::vector<PersonInFrame> people;  // every person within detection range
 };
 
@@ -91,13 +92,9 @@ class SyntheticRig {
   std::vector<double> person_grey_;
 };
 
-// Frames a consumer keeps with the paper's gate (core FrameGate): equal counts in
-// [1, max_people], then the next `skip_frames` frames are ignored.
-int countGatedPairs(const std::vector<int>& mask_people, const std::vector<int>& cluster_people,
-                    int max_people = 3, int skip_frames = 3);
-// Frames with equal counts in [1, max_people]: countGatedPairs with no skipping.
-int countEqualFrames(const std::vector<int>& mask_people, const std::vector<int>& cluster_people,
-                     int max_people = 3);
+// The decisions a consumer's gate (core FrameGate, as in DatasetBuilder) makes on frames with
+// these counts, in order. With skip_frames = 0, kept = frames with equal counts in 1..max_people.
+RejectionCounts gateFrames(const std::vector<PeopleCounts>& frames, const GateConfig& gate);
 
 // Stable per-stream seed (splitmix64 of the inputs).
 std::uint64_t mixSeed(std::uint64_t seed, std::uint64_t stream, std::uint64_t index);
