@@ -63,8 +63,12 @@ CalibrationResult calibrate(const CameraModel& camera, const std::vector<Calibra
   result.pairs_collected = pairs.size();
 
   std::uint64_t evaluations_before_stage = 0;
+  // history_stage: the stage's name in the history when it differs from the progress one.
   auto report = [&](const std::string& stage, int generation, int total, double best,
-                    const Extrinsic& e, std::uint64_t stage_evaluations) {
+                    const Extrinsic& e, std::uint64_t stage_evaluations,
+                    const std::string& history_stage = {}) {
+    result.history.push_back({history_stage.empty() ? stage : history_stage, generation, best,
+                              evaluations_before_stage + stage_evaluations});
     if (!progress) return true;
     Progress p;
     p.stage = stage;
@@ -130,10 +134,13 @@ CalibrationResult calibrate(const CameraModel& camera, const std::vector<Calibra
     constexpr int kMaxInlierRounds = 5;
     for (int round = 1; round <= kMaxInlierRounds; ++round) {
       evaluations_before_stage = result.evaluations;
+      const std::string round_name = "refine " + std::to_string(round);
+      result.history.push_back({round_name, 0, bilinear.loss(result.extrinsic, used),
+                                evaluations_before_stage});
       const RefineOutcome refined = refinement.run(
           result.extrinsic, used,
           [&](int iteration, double loss, const Extrinsic& e, std::uint64_t evals) {
-            return report("refine", iteration, 0, loss, e, evals);
+            return report("refine", iteration, 0, loss, e, evals, round_name);
           });
       result.extrinsic = refined.best;
       result.evaluations += refined.evaluations;
