@@ -66,7 +66,7 @@ OfferOutcome DatasetBuilder::offer(const std::function<Frame()>& decode) {
   }
 
   Frame frame;
-  std::map<std::int32_t, int> sizes;
+  PeopleCounts people;
   try {
     frame = decode();
     checkFrame(frame, camera_);
@@ -78,9 +78,9 @@ OfferOutcome DatasetBuilder::offer(const std::function<Frame()>& decode) {
                                   camera_frame_ + "', '" + lidar_frame_ +
                                   "': all frames must come from the same two sensors");
     }
-    outcome.mask_people = countMaskPeople(frame.mask);
-    sizes = clusterSizes(frame.labels);
-    outcome.cluster_people = static_cast<int>(sizes.size());
+    people = countPeople(frame.mask, frame.labels);
+    outcome.mask_people = people.mask_people;
+    outcome.cluster_people = people.cluster_people;
   } catch (const std::invalid_argument& e) {
     gate_.recordBadMessage();
     outcome.decision = GateDecision::kBadMessage;
@@ -95,10 +95,8 @@ OfferOutcome DatasetBuilder::offer(const std::function<Frame()>& decode) {
 
   gate_.counts().nonfinite_points_dropped += frame.nonfinite_points_dropped;
 
-  int smallest = std::numeric_limits<int>::max();
-  for (const auto& label_size : sizes) smallest = std::min(smallest, label_size.second);
-
-  outcome.decision = gate_.decide(outcome.mask_people, outcome.cluster_people, smallest);
+  outcome.decision =
+      gate_.decide(people.mask_people, people.cluster_people, people.smallest_cluster_points);
   if (outcome.decision != GateDecision::kKept) return outcome;
 
   CalibrationPair pair;

@@ -2,6 +2,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -64,6 +65,17 @@ std::map<std::int32_t, int> clusterSizes(const std::vector<std::int32_t>& labels
   std::map<std::int32_t, int> sizes;
   for (const std::int32_t label : labels) ++sizes[label];
   return sizes;
+}
+
+PeopleCounts countPeople(const cv::Mat& mask, const std::vector<std::int32_t>& labels) {
+  PeopleCounts counts;
+  counts.mask_people = countMaskPeople(mask);
+  const std::map<std::int32_t, int> sizes = clusterSizes(labels);
+  counts.cluster_people = static_cast<int>(sizes.size());
+  for (const auto& label_size : sizes) {
+    counts.smallest_cluster_points = std::min(counts.smallest_cluster_points, label_size.second);
+  }
+  return counts;
 }
 
 }  // namespace thermal_lidar_calibration

@@ -10,6 +10,7 @@
 #include "thermal_lidar_calibration/app/progress_line.hpp"
 #include "thermal_lidar_calibration/app/result_file.hpp"
 #include "thermal_lidar_calibration/app/unknown_parameters.hpp"
+#include "thermal_lidar_calibration/node/parameter_catalog.hpp"
 
 #include <atomic>
 #include <chrono>
@@ -39,7 +40,7 @@ CoreParameters loadParameters(const CalibrateBagOptions& options) {
   CoreParameters params;
   if (!options.config.empty()) {
     try {
-      const std::vector<std::string> unknown = unknownParameterKeys(yamlFileKeys(options.config));
+      const std::vector<std::string> unknown = unknownParameterKeys(yamlFileKeys(options.config), knownParameterKeys());
       if (!unknown.empty()) {
         warn("--config " + options.config + ": unknown keys ignored (possible typo): " +
              joined(unknown));

@@ -3,6 +3,7 @@
 #include "thermal_lidar_calibration/app/parameters.hpp"
 #include "thermal_lidar_calibration/node/node_parameters.hpp"
 #include "thermal_lidar_calibration/app/unknown_parameters.hpp"
+#include "thermal_lidar_calibration/node/parameter_catalog.hpp"
 
 #include <gtest/gtest.h>
 
@@ -79,7 +80,7 @@ TEST(Parameters, ShippedDefaultYamlMatchesTheStructsAndListsEveryKey) {
   for (const std::string& key : knownParameterKeys()) {
     EXPECT_NE(std::find(keys.begin(), keys.end(), key), keys.end()) << key << " not documented";
   }
-  EXPECT_TRUE(unknownParameterKeys(keys).empty());
+  EXPECT_TRUE(unknownParameterKeys(keys, knownParameterKeys()).empty());
 }
 
 TEST(Parameters, RigOverlays) {
@@ -133,7 +134,7 @@ TEST(Parameters, BadFiles) {
 
 TEST(Parameters, UnknownKeysAreReported) {
   const auto keys = yamlFileKeys(yamlFile("populaton_size: 5\nseed: 2\noutput_file: x.yaml\n"));
-  EXPECT_EQ(unknownParameterKeys(keys), std::vector<std::string>{"populaton_size"});
+  EXPECT_EQ(unknownParameterKeys(keys, knownParameterKeys()), std::vector<std::string>{"populaton_size"});
   // Unknown keys are ignored by the loader.
   EXPECT_EQ(loadText("populaton_size: 5\n").calibration.evolution.population_size, 500);
 }
@@ -155,4 +156,74 @@ TEST(Parameters, KnownKeysAreTheDescribedKeysEachOnce) {
   std::vector<std::string> sorted = knownParameterKeys();
   std::sort(sorted.begin(), sorted.end());
   EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end());
+}
+
+// ---- the node-only table and its cross-key rules ---------------------------------------------
+
+namespace {
+
+NodeParameters loadNodeText(const std::string& text) {
+  return loadNodeParameters(*makeYamlParameterSource(yamlFile(text)));
+}
+
+std::string nodeErrorOf(const std::string& text) {
+  try {
+    loadNodeText(text);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "<no exception>";
+}
+
+std::string described(const std::vector<std::pair<std::string, std::string>>& kv,
+                      const std::string& key) {
+  for (const auto& p : kv) {
+    if (p.first == key) return p.second;
+  }
+  return "<missing>";
+}
+
+}  // namespace
+
+TEST(NodeParameters, DefaultsAndOverrides) {
+  const NodeParameters d = loadNodeText("");
+  EXPECT_EQ(d.output_file, "thermal_lidar_calibration.yaml");
+  EXPECT_EQ(d.dataset_bag, "thermal_lidar_dataset.bag");
+  EXPECT_FALSE(d.resume);
+  EXPECT_EQ(d.min_pairs_to_calibrate, 20);
+  EXPECT_DOUBLE_EQ(d.status_rate_hz, 2.0);
+  const NodeParameters p = loadNodeText(
+      "output_file: /tmp/r.yaml\ndataset_bag: ''\nchild_frame: cam_cal\nstatus_rate_hz: 5\n"
+      "overlay_max_points: 100\npopulation_size: 50\n");
+  EXPECT_EQ(p.output_file, "/tmp/r.yaml");
+  EXPECT_EQ(p.dataset_bag, "");
+  EXPECT_EQ(p.child_frame, "cam_cal");
+  EXPECT_DOUBLE_EQ(p.status_rate_hz, 5.0);
+  EXPECT_EQ(p.overlay_max_points, 100);
+  EXPECT_EQ(p.core.calibration.evolution.population_size, 50);  // core keys through the same source
+}
+
+TEST(NodeParameters, BadValuesAndCrossKeyRules) {
+  EXPECT_EQ(nodeErrorOf("output_file: ''\n"),
+            "parameter 'output_file' = '': must name the result YAML file");
+  EXPECT_EQ(nodeErrorOf("status_rate_hz: 0.05\n"),
+            "parameter 'status_rate_hz' = 0.05: must be a number in [0.1, 100]");
+  EXPECT_EQ(nodeErrorOf("resume: maybe\n"), "parameter 'resume' = 'maybe': must be true or false");
+  EXPECT_EQ(nodeErrorOf("resume: true\ndataset_bag: ''\n"),
+            "parameter 'resume' = true but 'dataset_bag' is empty: name the dataset bag to resume");
+  // min_pairs_to_calibrate may not exceed pairs_required; its default shrinks to it.
+  EXPECT_EQ(nodeErrorOf("pairs_required: 10\nmin_pairs_to_calibrate: 11\n"),
+            "parameter 'min_pairs_to_calibrate' = 11: must be an integer in [1, 10]");
+  EXPECT_EQ(loadNodeText("pairs_required: 10\n").min_pairs_to_calibrate, 10);
+  // A core key's error comes first, from the core table.
+  EXPECT_EQ(nodeErrorOf("population_size: 1\n"),
+            "parameter 'population_size' = 1: must be an integer in [2, 100000]");
+}
+
+TEST(NodeParameters, DescribeSaysWhatAnEmptyStringMeans) {
+  const auto d = describeNodeParameters(loadNodeText("dataset_bag: ''\n"));
+  EXPECT_EQ(described(d, "dataset_bag"), "'' (not recorded)");
+  EXPECT_EQ(described(d, "child_frame"), "'' (<camera_frame>_calibrated)");
+  EXPECT_EQ(described(d, "output_file"), "thermal_lidar_calibration.yaml");
+  EXPECT_EQ(described(d, "tf_check_wait_s"), "2");
 }

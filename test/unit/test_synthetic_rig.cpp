@@ -1,6 +1,7 @@
 // The synthetic rig end to end (no ROS): projection consistency of clusters and masks under the
 // true extrinsic, people counts in view, determinism, presets, noise options.
 #include "thermal_lidar_calibration/core/camera_model.hpp"
+#include "thermal_lidar_calibration/core/dataset_builder.hpp"
 #include "thermal_lidar_calibration/synthetic/synthetic_rig.hpp"
 
 #include <gtest/gtest.h>
@@ -98,8 +99,8 @@ TEST(SyntheticRig, CountsPeopleInViewAndAllRound) {
   const std::vector<syn::WorldObject> objects{personAt(rig, 10.0, 1.0, 3), personAt(rig, -8.0, 2.0, 5),
                                               personAt(rig, 45.0, 0.0, 9)};
   const syn::SyntheticFrame frame = rig.renderSnapshot(objects, 0, 1.6e9);
-  EXPECT_EQ(frame.mask_people, 1);
-  EXPECT_EQ(frame.cluster_people, 2);
+  EXPECT_EQ(frame.counts.mask_people, 1);
+  EXPECT_EQ(frame.counts.cluster_people, 2);
   ASSERT_EQ(frame.people.size(), 2u);  // within detection range
   EXPECT_EQ(frame.people[0].mask_id, 1);
   EXPECT_EQ(frame.people[1].mask_id, 0);
@@ -117,7 +118,7 @@ TEST(SyntheticRig, CleanClustersProjectOntoTheMask) {
     double worst = 0.0;
     for (int i = 0; i < config.frames; i += 7) {
       const syn::SyntheticFrame frame = rig.render(i);
-      if (frame.mask_people != frame.cluster_people || frame.mask_people == 0) continue;
+      if (frame.counts.mask_people != frame.counts.cluster_people || frame.counts.mask_people == 0) continue;
       const ProjectionStats s = projectionStats(frame, config.rig);
       sum += s.mean_l1 * s.points;
       points += s.points;
@@ -159,19 +160,70 @@ TEST(SyntheticRig, DefaultDriveYieldsAboutSixtyGatedPairs) {
   syn::SyntheticConfig config;  // the generator's defaults
   const auto start = std::chrono::steady_clock::now();
   syn::SyntheticRig rig(config);
-  std::vector<int> mask_people, cluster_people;
-  for (int i = 0; i < config.frames; ++i) {
-    const syn::SyntheticFrame frame = rig.render(i);
-    mask_people.push_back(frame.mask_people);
-    cluster_people.push_back(frame.cluster_people);
-  }
+  std::vector<tlc::PeopleCounts> counts;
+  for (int i = 0; i < config.frames; ++i) counts.push_back(rig.render(i).counts);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const int equal = syn::countEqualFrames(mask_people, cluster_people);
-  const int kept = syn::countGatedPairs(mask_people, cluster_people, 3, 3);
-  std::printf("default: %d frames, %d equal 1..3, %d kept pairs, %zu people, %.1f s\n", config.frames, equal, kept,
+  tlc::GateConfig gate;
+  const auto kept = syn::gateFrames(counts, gate)[tlc::GateDecision::kKept];
+  gate.skip_frames = 0;
+  const auto equal = syn::gateFrames(counts, gate)[tlc::GateDecision::kKept];
+  std::printf("default: %d frames, %llu equal 1..3, %llu kept pairs, %zu people, %.1f s\n", config.frames,
+              static_cast<unsigned long long>(equal), static_cast<unsigned long long>(kept),
               rig.scene().people().size(), seconds);
-  EXPECT_GE(kept, 55);
-  EXPECT_LE(kept, 95);
+  EXPECT_GE(kept, 55u);
+  EXPECT_LE(kept, 95u);
+}
+
+// The rig predicts the consumer: the same frames offered to the core ingest path (DatasetBuilder)
+// get the same counts and the same number of kept pairs as the rig's gateFrames says.
+TEST(SyntheticRig, CountsAgreeWithTheIngestPath) {
+  for (const syn::MaskStyle style : {syn::MaskStyle::kIds, syn::MaskStyle::kBinary}) {
+    syn::SyntheticConfig config = smallConfig("fieldsafe", 150);
+    config.noise = syn::NoiseConfig::realistic();
+    config.mask_style = style;
+    const syn::SyntheticRig rig(config);
+    tlc::DatasetBuilder builder(config.rig.camera, tlc::GateConfig{});
+    std::vector<tlc::PeopleCounts> counts;
+    for (int i = 0; i < config.frames; ++i) {
+      syn::SyntheticFrame frame = rig.render(i);
+      counts.push_back(frame.counts);
+      const tlc::OfferOutcome outcome = builder.offer([&] {
+        tlc::Frame f;
+        f.mask = frame.mask;
+        f.points = frame.cluster_points;
+        f.labels = frame.cluster_labels;
+        return f;
+      });
+      if (outcome.decision == tlc::GateDecision::kSkipped) continue;
+      EXPECT_EQ(outcome.mask_people, frame.counts.mask_people) << "frame " << i;
+      EXPECT_EQ(outcome.cluster_people, frame.counts.cluster_people) << "frame " << i;
+    }
+    const tlc::RejectionCounts predicted = syn::gateFrames(counts, tlc::GateConfig{});
+    EXPECT_EQ(predicted.by_decision, builder.counts().by_decision);
+    EXPECT_GT(builder.pairs().size(), 5u);
+  }
+}
+
+// A person seen on both sides of a thin post in front of them: one id in the mask but several
+// 8-connected regions (arms and torso slivers). In a binary mask the consumer counts two people; so must the rig.
+TEST(SyntheticRig, APersonSplitByAPostCountsAsTheConsumerCountsIt) {
+  syn::SyntheticConfig config = smallConfig("fieldsafe", 1);
+  config.mask_style = syn::MaskStyle::kBinary;
+  syn::SyntheticRig rig(config);
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translate(Eigen::Vector3d(0, 0, rig.groundZ()));
+  // The camera sits ~0.44 m left of the LiDAR: put the post on the camera's line of sight.
+  const Eigen::Vector3d camera = -config.rig.truth.rotationMatrix().transpose() * config.rig.truth.translation;
+  const Eigen::Vector2d person_xy(10.0, camera.y());
+  syn::WorldObject post;
+  post.solid = syn::makePost(Eigen::Vector2d(5.0, camera.y() / 2.0 + person_xy.y() / 2.0), 2.5, 0.08).transformed(T);
+  post.clutter_id = 1;
+  const std::vector<syn::WorldObject> objects{personAt(rig, person_xy.x(), person_xy.y(), 1), post};
+  const syn::SyntheticFrame frame = rig.renderSnapshot(objects, 0, 1.6e9);
+  ASSERT_GT(cv::countNonZero(frame.mask), 100);
+  EXPECT_EQ(frame.counts.mask_people, tlc::countMaskPeople(frame.mask));
+  EXPECT_GE(frame.counts.mask_people, 2);  // one person, several regions: the consumer's count
+  EXPECT_EQ(frame.counts.cluster_people, 1);
 }
 
 TEST(SyntheticRig, NoiseOptionsChangeWhatTheyShould) {
@@ -212,6 +264,15 @@ TEST(SyntheticRig, PresetsAndBadConfigs) {
   config.frames = 10;
   config.noise.miss_rate = 1.5;
   EXPECT_THROW(syn::SyntheticRig{config}, std::invalid_argument);
-  EXPECT_EQ(syn::countGatedPairs({1, 1, 1, 1, 1, 2, 0}, {1, 1, 1, 1, 1, 2, 0}, 3, 3), 2);
-  EXPECT_EQ(syn::countGatedPairs({1, 4, 2}, {1, 4, 1}, 3, 0), 1);
+  const auto kept = [](const std::vector<std::pair<int, int>>& frames, int skip) {
+    std::vector<tlc::PeopleCounts> counts;
+    for (const auto& f : frames) counts.push_back({f.first, f.second, 10});
+    tlc::GateConfig gate;
+    gate.skip_frames = skip;
+    return syn::gateFrames(counts, gate)[tlc::GateDecision::kKept];
+  };
+  EXPECT_EQ(kept({{1, 1}, {1, 1}, {1, 1}, {1, 1}, {1, 1}, {2, 2}, {0, 0}}, 3), 2u);
+  EXPECT_EQ(kept({{1, 1}, {4, 4}, {2, 1}}, 0), 1u);
+  // A cluster below min_points_per_cluster rejects the frame, as in the ingest path.
+  EXPECT_EQ(syn::gateFrames({{1, 1, 2}}, tlc::GateConfig{})[tlc::GateDecision::kSmallCluster], 1u);
 }

@@ -1,21 +1,19 @@
 #pragma once
-// One table of parameter keys shared by calibration_node (private ~ parameters) and
-// calibrate_bag (--config YAML, the same file as config/default.yaml). The loader starts from
-// the core defaults, overrides what the source has, validates, and throws
-// std::invalid_argument("parameter 'population_size' = -3: must be an integer in [2, 100000]").
+// The parameters both executables use (optimizer, gating, pairing): calibration_node reads them
+// as private parameters (~key), calibrate_bag from its --config YAML (the format of
+// config/default.yaml). Their rows: src/app/core_parameter_table.cpp.
 
+#include "thermal_lidar_calibration/app/parameter_table.hpp"
 #include "thermal_lidar_calibration/core/calibration_config.hpp"
 #include "thermal_lidar_calibration/core/frame_gate.hpp"
 
-#include <functional>
-#include <memory>
-#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace thermal_lidar_calibration {
 
-// Parameters both executables use: optimizer, gating and pairing.
+// The member initialisers (here and in the core config structs) are the defaults.
 struct CoreParameters {
   CalibrationConfig calibration;
   GateConfig gate;
@@ -24,26 +22,12 @@ struct CoreParameters {
   int pairs_required = 60;     // node: pairs to collect before optimizing
 };
 
-// A read-only view of parameters: a YAML map or a ros::NodeHandle.
-class ParameterSource {
- public:
-  virtual ~ParameterSource() = default;
-  virtual bool has(const std::string& key) const = 0;
-  virtual std::optional<double> getDouble(const std::string& key) const = 0;
-  virtual std::optional<long long> getInt(const std::string& key) const = 0;  // rejects 1.5
-  virtual std::optional<std::string> getString(const std::string& key) const = 0;
-  virtual std::optional<bool> getBool(const std::string& key) const = 0;
-};
+const ParameterTable<CoreParameters>& coreParameterTable();
 
-// Throws std::invalid_argument on a bad file (missing, not YAML, not a map).
-std::unique_ptr<ParameterSource> makeYamlParameterSource(const std::string& path);
-
+// The defaults overridden by what `source` has, then the core's cross-key rules. Throws
+// std::invalid_argument("parameter 'population_size' = -3: must be an integer in [2, 100000]").
 CoreParameters loadCoreParameters(const ParameterSource& source);
-// Every core key with its effective value, one "key: value" per line (for the start-up log
-// and the result file).
+// Every core key with its effective value (start-up log, result file), in table order.
 std::vector<std::pair<std::string, std::string>> describeCoreParameters(const CoreParameters& p);
-// All keys this package knows (core and node-only), to warn about typos in a --config file:
-// the keys of describeCoreParameters() then describeNodeParameters(), in their order.
-const std::vector<std::string>& knownParameterKeys();
 
 }  // namespace thermal_lidar_calibration

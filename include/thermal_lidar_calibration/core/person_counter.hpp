@@ -5,6 +5,7 @@
 #include <opencv2/core.hpp>
 
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <vector>
 
@@ -19,5 +20,16 @@ cv::Mat binarizeMask(const cv::Mat& mask);
 
 // Points per distinct label.
 std::map<std::int32_t, int> clusterSizes(const std::vector<std::int32_t>& labels);
+
+// What the frame gate decides on: people in the mask, people (distinct labels) in the clusters
+// and the size of the smallest cluster (max() when there is none).
+struct PeopleCounts {
+  int mask_people = 0;
+  int cluster_people = 0;
+  int smallest_cluster_points = std::numeric_limits<int>::max();
+};
+// The one way people are counted, by the ingest path and by anything that predicts it (the
+// synthetic rig): countMaskPeople on the mask, clusterSizes on the labels.
+PeopleCounts countPeople(const cv::Mat& mask, const std::vector<std::int32_t>& labels);
 
 }  // namespace thermal_lidar_calibration

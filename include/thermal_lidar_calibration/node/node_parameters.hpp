@@ -1,11 +1,9 @@
 #pragma once
 // calibration_node's parameters: the core keys shared with calibrate_bag plus the node-only
-// keys. Loaded once at start; any invalid value throws std::invalid_argument naming the key,
-// the value and the allowed range, and the node refuses to start.
+// keys (their rows: src/node/node_parameter_table.cpp, same machinery as the core table).
+// ROS-free: the node reads them through a ParameterSource over its private NodeHandle.
 
 #include "thermal_lidar_calibration/app/parameters.hpp"
-
-#include <ros/node_handle.h>
 
 #include <string>
 #include <utility>
@@ -29,10 +27,13 @@ struct NodeParameters {
   int overlay_max_points = 30000;      // [100, 10000000] points drawn per overlay image
 };
 
-// Reads ~ parameters of `private_nh`. Throws std::invalid_argument on any invalid value.
-NodeParameters loadNodeParameters(const ros::NodeHandle& private_nh);
-// "key: value" for every node-only key (the core keys come from describeCoreParameters). Its
-// keys are also the node-only part of knownParameterKeys().
+// The node-only rows (the core rows are coreParameterTable()).
+const ParameterTable<NodeParameters>& nodeParameterTable();
+
+// Core keys, node-only keys, then the node's cross-key rules. Throws std::invalid_argument
+// naming the key, the value and the allowed range; the node refuses to start.
+NodeParameters loadNodeParameters(const ParameterSource& source);
+// "key: value" for every node-only key (the core keys come from describeCoreParameters).
 std::vector<std::pair<std::string, std::string>> describeNodeParameters(const NodeParameters& p);
 
 }  // namespace ros_io

@@ -1,0 +1,53 @@
+#pragma once
+// Shape of one candidate object in the levelled frame (z up, heights above the local ground) and
+// the person test on it: height, how close to the ground it reaches, width across and depth
+// along the line of sight, height / width (a bush is squat, a pole thin), and a point count that
+// scales with 1 / range^2 as the beam footprint grows.
+
+#include "thermal_lidar_calibration/detection/lidar_detector_config.hpp"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace thermal_lidar_calibration {
+namespace detection {
+
+struct PersonShape {
+  int points = 0;
+  Eigen::Vector2f centroid_xy = Eigen::Vector2f::Zero();  // levelled frame, m
+  float range_m = 0;   // horizontal distance of the centroid
+  float top_m = 0;     // highest point above the local ground
+  float bottom_m = 0;  // lowest point above the local ground
+  float width_m = 0;   // extent across the line of sight
+  float depth_m = 0;   // extent along the line of sight
+  // Width of the leg zone (20-45 % of the top) over the width of the torso zone (50-85 %):
+  // ~0.5-0.7 for a standing person (legs are narrower than shoulders and arms), ~1 for a post;
+  // 0 when a zone has no point (too few rings at long range: the test is then skipped).
+  float leg_to_torso_width = 0;
+};
+
+enum class ShapeVerdict {
+  kPerson,
+  kOutOfRange,
+  kTooFewPoints,
+  kTooLow,
+  kTooTall,
+  kFloating,     // does not reach down to the ground
+  kTooNarrow,    // a pole
+  kTooWide,
+  kTooDeep,
+  kTooSquat,     // height / width too small: a bush, a vehicle
+  kStraight,     // narrow, and the legs as wide as the torso: a post, a trunk
+};
+const char* toString(ShapeVerdict verdict);
+
+// levelled: levelled-frame points; heights: above the local ground; indices: the object's points.
+PersonShape measureShape(const std::vector<Eigen::Vector3f>& levelled, const std::vector<float>& heights,
+                         const std::vector<int>& indices);
+ShapeVerdict judgeShape(const PersonShape& shape, const LidarPersonConfig& config);
+// The fewest points a person at this horizontal range must have.
+double minPersonPoints(double range_m, const LidarPersonConfig& config);
+
+}  // namespace detection
+}  // namespace thermal_lidar_calibration

@@ -1,0 +1,55 @@
+#pragma once
+// Classical thermal person segmentation: warm regions against a robust per-frame background
+// level (and, for a radiometric 16-bit image, an absolute body-surface band in kelvin), a
+// morphological clean-up, 8-connected components and shape filters (area, height / width,
+// fill). One threshold pass to 8 bits and integer work after it keep a 640x512 16-bit frame
+// within ~2-3 ms on one core (bench/detection_benchmark.cpp).
+//
+// What fools it, and how the calibration survives it, is in the README ("Person detectors").
+
+#include "thermal_lidar_calibration/detection/thermal_segmenter_config.hpp"
+
+#include <opencv2/core.hpp>
+
+#include <vector>
+
+namespace thermal_lidar_calibration {
+namespace detection {
+
+struct ThermalPerson {
+  int id = 0;              // value in the mask, 1..n
+  cv::Rect bbox;           // pixels
+  int area_px = 0;         // mask pixels
+  cv::Point2d centroid;    // pixels
+  double fill = 0.0;       // area / bounding-box area
+  double mean_level = 0.0; // mean pixel value inside the mask: kelvin if radiometric, else raw
+};
+
+struct ThermalSegmentation {
+  cv::Mat mask;  // CV_8UC1, same size as the image: 0 = background, ids 1..n (n <= 255)
+  std::vector<ThermalPerson> people;  // in id order
+  bool radiometric = false;     // true: levels below are kelvin, else raw pixel values
+  double background_level = 0;  // median of the sampled pixels
+  double threshold_low = 0;     // a person pixel is in [threshold_low, threshold_high]
+  double threshold_high = 0;
+  int components = 0;           // connected components before the shape filters
+};
+
+class ThermalPersonSegmenter {
+ public:
+  // Throws std::invalid_argument (from config.validate()) on a bad configuration.
+  explicit ThermalPersonSegmenter(const ThermalSegmenterConfig& config = {});
+
+  // image: CV_8UC1 or CV_16UC1, non-empty. Throws std::invalid_argument otherwise.
+  ThermalSegmentation segment(const cv::Mat& image) const;
+
+  const ThermalSegmenterConfig& config() const { return config_; }
+
+ private:
+  ThermalSegmenterConfig config_;
+  cv::Mat open_kernel_;
+  cv::Mat close_kernel_;
+};
+
+}  // namespace detection
+}  // namespace thermal_lidar_calibration

@@ -1,0 +1,58 @@
+#pragma once
+// Settings of the thermal person segmenter. The member initialisers are the defaults; every
+// threshold carries its unit and allowed range, and validate() names the key, the value and the
+// range of the first bad one (the keys are the flat parameter keys of config/default.yaml).
+
+#include <string>
+
+namespace thermal_lidar_calibration {
+namespace detection {
+
+// How pixel values are read.
+enum class ThermalScale {
+  kAuto,      // 16-bit with kelvin_per_count > 0: radiometric; otherwise relative
+  kRelative,  // always relative to the frame (uncalibrated cores, AGC-mapped 8-bit video)
+};
+
+struct ThermalSegmenterConfig {
+  // --- Radiometric scale of 16-bit images: kelvin = counts * kelvin_per_count + kelvin_offset.
+  double kelvin_per_count = 0.04;  // K per count; 0 = not radiometric; [0, 10]
+  double kelvin_offset = 0.0;      // K; [-10000, 10000]
+  ThermalScale scale = ThermalScale::kAuto;  // thermal_scale: auto | relative
+
+  // --- Radiometric mode: a person pixel is in the body-surface band AND warmer than the scene.
+  double body_min_k = 295.0;      // thermal_body_min_k: coolest apparent body surface (clothed), K; [150, 400]
+  double body_max_k = 312.0;      // thermal_body_max_k: warmest (bare skin ~306-309 K), K; (150, 500], above thermal_body_min_k
+  double min_contrast_k = 3.0;    // thermal_min_contrast_k: above the frame's background level, K; [0, 100]
+
+  // --- Relative mode (8-bit, or 16-bit not radiometric): threshold between the background
+  // level and the frame's warm tail, never closer to the background than a noise margin.
+  double relative_threshold = 0.45;        // thermal_relative_threshold: fraction of (warm tail - background); (0, 1]
+  double relative_tail_percentile = 99.7;  // thermal_relative_tail_percentile: the warm tail, %; [50, 100]
+  double relative_min_contrast_noise = 6.0;  // thermal_relative_min_contrast_noise: floor of the contrast in sigmas of the pixel noise (from neighbouring-pixel differences; at least one grey level); [0, 1000]
+
+  // --- Background level: median of a sub-sampled grid of pixels.
+  int background_step_px = 4;  // thermal_background_step_px: sample every n-th pixel in x and y; integer [1, 64]
+
+  // --- Clean-up of the binary mask (square structuring elements of side 2r+1).
+  int open_radius_px = 1;   // thermal_open_radius_px: opening removes specks and 1-px bridges; integer [0, 10]
+  int close_radius_px = 1;  // thermal_close_radius_px: closing fills small holes and seams; integer [0, 10]
+
+  // --- Shape filters per connected component (8-connected).
+  int min_area_px = 40;             // thermal_min_area_px: pixels; integer [1, 10000000]
+  double max_area_fraction = 0.25;  // thermal_max_area_fraction: of the image area; (0, 1]
+  int min_height_px = 10;           // thermal_min_height_px: bounding-box height, px; integer [1, 100000]
+  double min_aspect = 1.1;          // thermal_min_aspect: bounding-box height / width; (0, 100]
+  double max_aspect = 5.5;          // thermal_max_aspect: height / width; (0, 100], >= thermal_min_aspect
+  double min_fill = 0.30;           // thermal_min_fill: area / bounding-box area; [0, 1]
+  double max_fill = 0.95;           // thermal_max_fill: area / bounding-box area; [0, 1], >= thermal_min_fill
+
+  void validate() const;  // throws std::invalid_argument naming key, value and range
+};
+
+// "auto" / "relative" <-> ThermalScale; parse throws std::invalid_argument naming the key.
+ThermalScale parseThermalScale(const std::string& text);
+const char* toString(ThermalScale scale);
+
+}  // namespace detection
+}  // namespace thermal_lidar_calibration

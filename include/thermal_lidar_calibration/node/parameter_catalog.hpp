@@ -1,0 +1,17 @@
+#pragma once
+// Every parameter table of the package, in documentation order: the core table, then the
+// node-only table. A part that adds its own table lists it once in parameter_catalog.cpp;
+// the known keys (typo warnings) and the documentation (config/default.yaml, README) follow.
+
+#include "thermal_lidar_calibration/app/parameter_table.hpp"
+
+#include <string>
+#include <vector>
+
+namespace thermal_lidar_calibration {
+
+std::vector<ParameterDoc> allParameterDocs();
+// Every key of every table, each once, in documentation order.
+const std::vector<std::string>& knownParameterKeys();
+
+}  // namespace thermal_lidar_calibration

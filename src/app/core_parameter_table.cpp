@@ -1,0 +1,144 @@
+// The core parameter table: every key calibration_node and calibrate_bag share.
+//
+// Adding a key:
+//   1. give its struct a field whose member initialiser is the default (the core config
+//      structs in core/, or CoreParameters in app/parameters.hpp);
+//   2. add one row below, in the section it belongs to:
+//        <group>.integer / real / boolean / text / choice / integerChoice(
+//            "key", &Struct::field, allowed values, [unit,] "what it is", ["note"]);
+//   3. run scripts/update_parameter_docs.sh: it rewrites config/default.yaml and README's
+//      parameter table from the rows (test_parameter_docs fails until they agree).
+// A new config struct gets one group line (`auto x = t.group<XConfig>(...)`) and, if it has
+// rules across keys, a validate() called from loadCoreParameters(). Keys of one part only (the
+// node's) go in that part's own table with the same machinery (src/node/node_parameter_table.cpp).
+
+#include "thermal_lidar_calibration/app/parameters.hpp"
+
+#include <limits>
+
+namespace thermal_lidar_calibration {
+namespace {
+
+ParameterTable<CoreParameters> makeCoreParameterTable() {
+  ParameterTable<CoreParameters> t;
+  auto top = t.fields();
+  auto calibration = t.group<CalibrationConfig>(
+      [](CoreParameters& p) -> CalibrationConfig& { return p.calibration; });
+  auto evolution = t.group<EvolutionConfig>(
+      [](CoreParameters& p) -> EvolutionConfig& { return p.calibration.evolution; });
+  auto outlier = t.group<OutlierConfig>(
+      [](CoreParameters& p) -> OutlierConfig& { return p.calibration.outlier; });
+  auto refine = t.group<RefineConfig>(
+      [](CoreParameters& p) -> RefineConfig& { return p.calibration.refine; });
+  auto gate = t.group<GateConfig>([](CoreParameters& p) -> GateConfig& { return p.gate; });
+
+  t.section("Algorithm and run control");
+  calibration.integerChoice(
+      "algorithm", &CalibrationConfig::algorithm,
+      {{1, Algorithm::kPlain}, {2, Algorithm::kOutlierRejection}},
+      "must be 1 (plain evolution) or 2 (with outlier rejection)",
+      "1 = Algorithm 1 (evolution only), 2 = Algorithm 2 (outlier rejection)");
+  refine.choice("refine", &RefineConfig::mode,
+                {{"none", RefineMode::kNone}, {"local", RefineMode::kLocal}},
+                "must be 'none' or 'local'", "local derivative-free refinement after the evolution");
+  calibration.integer("seed", &CalibrationConfig::seed, {0, std::numeric_limits<long long>::max()},
+                      "", "random seed: same seed + same data = same result");
+  calibration.integer("num_threads", &CalibrationConfig::num_threads, {0, 1024}, "",
+                      "loss threads, 0 = all cores (the result does not depend on it)");
+
+  t.section("Algorithm 1: evolutionary search (Table 1)");
+  evolution.integer("population_size", &EvolutionConfig::population_size, {2, 100000}, "",
+                    "N_pop, individuals per generation");
+  evolution.integer("max_iterations", &EvolutionConfig::max_iterations, {1, 100000}, "",
+                    "iter_max, generations");
+  evolution.real("rotation_interval_rad", &EvolutionConfig::rotation_interval_rad,
+                 aboveRange(0, 10), "rad", "initial rotation vector components ~ U(-a, a)");
+  evolution.real("translation_interval_m", &EvolutionConfig::translation_interval_m,
+                 aboveRange(0, 1000), "m", "initial translation components ~ U(-a, a)");
+  evolution.real("elite_fraction", &EvolutionConfig::elite_fraction, closedRange(0, 1), "",
+                 "pct_elite, fraction copied unchanged", "elite_fraction + crossover_fraction <= 1");
+  evolution.real("crossover_fraction", &EvolutionConfig::crossover_fraction, closedRange(0, 1),
+                 "", "pct_crossover, fraction made by crossover");
+  evolution.integer("initial_population_factor", &EvolutionConfig::initial_population_factor,
+                    {1, 1000}, "", "c2: first generation has c2 * N_pop individuals");
+  evolution.real("sigma_rot_rad", &EvolutionConfig::sigma_rot_rad, aboveRange(0, 3.5), "rad",
+                 "mutation noise U(-s, s) per rotation component");
+  evolution.real("sigma_trans_m", &EvolutionConfig::sigma_trans_m, aboveRange(0, 100), "m",
+                 "mutation noise U(-s, s) per translation component");
+  evolution.real("min_inside_fraction", &EvolutionConfig::min_inside_fraction, closedRange(0, 1),
+                 "", "initial individual kept if some pair projects >= this fraction inside the image");
+  calibration.real("behind_camera_penalty_c1", &CalibrationConfig::behind_camera_penalty_c1,
+                   aboveRange(0, 1e6), "",
+                   "c1 of Eq. (2): a point behind the camera scores c1 * max(h, w) px");
+
+  t.section("Algorithm 2: outlier rejection (Table 1)");
+  outlier.integer("min_sample_large", &OutlierConfig::min_sample_large, {1, 100000}, "",
+                  "min_sample when the dataset has >= min_sample_switch pairs");
+  outlier.integer("min_sample_small", &OutlierConfig::min_sample_small, {1, 100000}, "",
+                  "min_sample otherwise");
+  outlier.integer("min_sample_switch", &OutlierConfig::min_sample_switch, {1, 100000}, "",
+                  "dataset size at which min_sample_large is used");
+  outlier.integer("outlier_iterations", &OutlierConfig::iterations, {0, 1000}, "",
+                  "iter_outlier, fitting attempts on random subsets");
+  outlier.real("ratio_solution", &OutlierConfig::ratio_solution, closedRange(0, 1), "",
+               "a subset fit is accepted if this fraction of the other pairs is within threshold");
+  outlier.real("threshold_sample_px", &OutlierConfig::threshold_px, aboveRange(0, 1e6), "px",
+               "threshold_sample: a pair with Eq. (1) loss above this is an outlier",
+               "MS2 rig: 1.5");
+
+  t.section("Local refinement (beyond the paper; refine: local)");
+  refine.real("refine_initial_step_rot_rad", &RefineConfig::initial_step_rot_rad,
+              aboveRange(0, 1), "rad", "first probe step");
+  refine.real("refine_initial_step_trans_m", &RefineConfig::initial_step_trans_m,
+              aboveRange(0, 10), "m", "first probe step");
+  refine.real("refine_min_step_rot_rad", &RefineConfig::min_step_rot_rad, aboveRange(0, 1), "rad",
+              "stop when steps shrink below this", "<= refine_initial_step_rot_rad");
+  refine.real("refine_min_step_trans_m", &RefineConfig::min_step_trans_m, aboveRange(0, 10), "m",
+              "stop when steps shrink below this", "<= refine_initial_step_trans_m");
+  refine.integer("refine_max_evaluations", &RefineConfig::max_evaluations, {1, 100000000}, "",
+                 "loss evaluations at most");
+  refine.boolean("refine_exclude_truncated", &RefineConfig::exclude_truncated,
+                 "refine without pairs whose people touch the image border (while >= half the "
+                 "pairs remain)");
+  refine.boolean("refine_reselect_inliers", &RefineConfig::reselect_inliers,
+                 "after refining, re-select inliers among all pairs (Eq. 1 <= threshold_sample_px) "
+                 "and refine again until stable");
+
+  t.section("Frame gating and pairing (Section 3.1)");
+  gate.integer("max_people", &GateConfig::max_people, {1, 1000}, "",
+               "H_max: keep a frame only if both modalities count 1..H_max people");
+  gate.integer("skip_frames", &GateConfig::skip_frames, {0, 100000}, "",
+               "candidate frames ignored after a kept one");
+  gate.integer("min_points_per_cluster", &GateConfig::min_points_per_cluster, {1, 1000000}, "",
+               "a person cluster with fewer LiDAR points rejects the frame");
+  top.real("sync_slop", &CoreParameters::sync_slop_s, aboveRange(0, 10), "s",
+           "ApproximateTime max interval between image, mask and clusters");
+  top.integer("sync_queue_size", &CoreParameters::sync_queue_size, {2, 10000}, "messages",
+              "ApproximateTime queue per topic");
+  top.integer("pairs_required", &CoreParameters::pairs_required, {1, 100000}, "",
+              "node: pairs to collect before optimizing",
+              "calibrate_bag uses every pair in the bag");
+  return t;
+}
+
+}  // namespace
+
+const ParameterTable<CoreParameters>& coreParameterTable() {
+  static const ParameterTable<CoreParameters> table = makeCoreParameterTable();
+  return table;
+}
+
+CoreParameters loadCoreParameters(const ParameterSource& source) {
+  CoreParameters p;
+  coreParameterTable().load(source, p);
+  // Cross-key rules (elite + crossover <= 1, min steps below initial steps, ...) are the core's.
+  p.calibration.validate();
+  p.gate.validate();
+  return p;
+}
+
+std::vector<std::pair<std::string, std::string>> describeCoreParameters(const CoreParameters& p) {
+  return coreParameterTable().describe(p);
+}
+
+}  // namespace thermal_lidar_calibration

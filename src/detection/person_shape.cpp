@@ -1,0 +1,102 @@
+#include "thermal_lidar_calibration/detection/person_shape.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace thermal_lidar_calibration {
+namespace detection {
+
+const char* toString(ShapeVerdict verdict) {
+  switch (verdict) {
+    case ShapeVerdict::kPerson: return "person";
+    case ShapeVerdict::kOutOfRange: return "out_of_range";
+    case ShapeVerdict::kTooFewPoints: return "too_few_points";
+    case ShapeVerdict::kTooLow: return "too_low";
+    case ShapeVerdict::kTooTall: return "too_tall";
+    case ShapeVerdict::kFloating: return "floating";
+    case ShapeVerdict::kTooNarrow: return "too_narrow";
+    case ShapeVerdict::kTooWide: return "too_wide";
+    case ShapeVerdict::kTooDeep: return "too_deep";
+    case ShapeVerdict::kTooSquat: return "too_squat";
+    case ShapeVerdict::kStraight: return "straight";
+  }
+  return "unknown";
+}
+
+PersonShape measureShape(const std::vector<Eigen::Vector3f>& levelled, const std::vector<float>& heights,
+                         const std::vector<int>& indices) {
+  PersonShape shape;
+  shape.points = static_cast<int>(indices.size());
+  if (indices.empty()) return shape;
+  Eigen::Vector2f sum = Eigen::Vector2f::Zero();
+  float top = -std::numeric_limits<float>::infinity();
+  float bottom = std::numeric_limits<float>::infinity();
+  for (int i : indices) {
+    sum += levelled[i].head<2>();
+    top = std::max(top, heights[i]);
+    bottom = std::min(bottom, heights[i]);
+  }
+  shape.centroid_xy = sum / static_cast<float>(indices.size());
+  shape.range_m = shape.centroid_xy.norm();
+  shape.top_m = top;
+  shape.bottom_m = bottom;
+  // Axes of the line of sight through the centroid.
+  const Eigen::Vector2f along = shape.range_m > 1e-6f ? Eigen::Vector2f(shape.centroid_xy / shape.range_m)
+                                                      : Eigen::Vector2f(Eigen::Vector2f::UnitX());
+  const Eigen::Vector2f across(-along.y(), along.x());
+  const float inf = std::numeric_limits<float>::infinity();
+  float a_min = inf, a_max = -inf, c_min = inf, c_max = -inf;
+  float leg_min = inf, leg_max = -inf, torso_min = inf, torso_max = -inf;
+  // Zone bounds as fractions of the top: legs 20-45 % (above stray ground points at the feet),
+  // torso and arms 50-85 % (below the head).
+  const float leg_bottom = 0.2f * top, leg_top = 0.45f * top, torso_bottom = 0.5f * top, torso_top = 0.85f * top;
+  for (int i : indices) {
+    const Eigen::Vector2f p = levelled[i].head<2>();
+    const float a = p.dot(along), c = p.dot(across);
+    a_min = std::min(a_min, a);
+    a_max = std::max(a_max, a);
+    c_min = std::min(c_min, c);
+    c_max = std::max(c_max, c);
+    const float h = heights[i];
+    if (h >= leg_bottom && h <= leg_top) {
+      leg_min = std::min(leg_min, c);
+      leg_max = std::max(leg_max, c);
+    } else if (h >= torso_bottom && h <= torso_top) {
+      torso_min = std::min(torso_min, c);
+      torso_max = std::max(torso_max, c);
+    }
+  }
+  shape.depth_m = a_max - a_min;
+  shape.width_m = c_max - c_min;
+  if (leg_max > leg_min && torso_max > torso_min) {
+    shape.leg_to_torso_width = (leg_max - leg_min) / (torso_max - torso_min);
+  }
+  return shape;
+}
+
+double minPersonPoints(double range_m, const LidarPersonConfig& config) {
+  const double r = std::max(range_m, 0.1);
+  return std::max(static_cast<double>(config.min_points), config.min_points_at_10m * (10.0 / r) * (10.0 / r));
+}
+
+ShapeVerdict judgeShape(const PersonShape& s, const LidarPersonConfig& c) {
+  if (s.range_m < c.min_range_m || s.range_m > c.max_range_m) return ShapeVerdict::kOutOfRange;
+  if (s.top_m > c.max_height_m) return ShapeVerdict::kTooTall;
+  if (s.top_m < c.min_height_m) return ShapeVerdict::kTooLow;
+  if (s.bottom_m > c.max_bottom_m) return ShapeVerdict::kFloating;
+  if (s.width_m > c.max_width_m) return ShapeVerdict::kTooWide;
+  if (s.depth_m > c.max_depth_m) return ShapeVerdict::kTooDeep;
+  if (s.width_m < c.min_width_m) return ShapeVerdict::kTooNarrow;
+  if (s.top_m < c.min_height_to_width * s.width_m) return ShapeVerdict::kTooSquat;
+  const double ratio = s.leg_to_torso_width;  // 0 = not measured
+  if (s.width_m <= c.post_max_width_m && ratio >= c.post_leg_to_torso_ratio &&
+      ratio <= 1.0 / c.post_leg_to_torso_ratio) {
+    return ShapeVerdict::kStraight;
+  }
+  if (s.points < minPersonPoints(s.range_m, c)) return ShapeVerdict::kTooFewPoints;
+  return ShapeVerdict::kPerson;
+}
+
+}  // namespace detection
+}  // namespace thermal_lidar_calibration

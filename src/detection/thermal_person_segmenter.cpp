@@ -1,0 +1,179 @@
+#include "thermal_lidar_calibration/detection/thermal_person_segmenter.hpp"
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace thermal_lidar_calibration {
+namespace detection {
+namespace {
+
+// Robust statistics of a sub-sampled grid of pixels: the median (background level), an upper
+// percentile (the warm tail), and the pixel noise: 1.4826 * MAD of the differences between
+// horizontal neighbours / sqrt(2), which scene structure (sky above ground) does not inflate as
+// it does the MAD of the values. A grid of every 4th pixel (20k samples of a 640x512 frame)
+// costs ~0.05 ms, a full-frame median ~1 ms.
+struct FrameLevels {
+  double median = 0;
+  double tail = 0;
+  double noise_sigma = 0;
+};
+
+template <typename T>
+FrameLevels sampleLevels(const cv::Mat& image, int step, double tail_percentile) {
+  std::vector<int> samples, differences;
+  const auto expected = static_cast<std::size_t>((image.rows / step + 1) * (image.cols / step + 1));
+  samples.reserve(expected);
+  differences.reserve(expected);
+  for (int y = step / 2; y < image.rows; y += step) {
+    const T* row = image.ptr<T>(y);
+    for (int x = step / 2; x < image.cols; x += step) {
+      samples.push_back(row[x]);
+      if (x + 1 < image.cols) differences.push_back(std::abs(static_cast<int>(row[x + 1]) - static_cast<int>(row[x])));
+    }
+  }
+  const std::size_t n = samples.size();
+  const std::size_t mid = n / 2;
+  std::nth_element(samples.begin(), samples.begin() + mid, samples.end());
+  FrameLevels levels;
+  levels.median = samples[mid];
+  // The upper tail lies in [mid, n): a second partial sort there only.
+  const auto tail_index = std::min(
+      n - 1, static_cast<std::size_t>(std::floor(tail_percentile / 100.0 * static_cast<double>(n - 1))));
+  if (tail_index > mid) {
+    std::nth_element(samples.begin() + mid + 1, samples.begin() + tail_index, samples.end());
+  }
+  levels.tail = samples[std::max(tail_index, mid)];
+  if (!differences.empty()) {
+    const std::size_t dmid = differences.size() / 2;
+    std::nth_element(differences.begin(), differences.begin() + dmid, differences.end());
+    levels.noise_sigma = 1.4826 * differences[dmid] / std::sqrt(2.0);
+  }
+  return levels;
+}
+
+cv::Mat squareKernel(int radius) {
+  return cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * radius + 1, 2 * radius + 1));
+}
+
+bool passesShape(const ThermalSegmenterConfig& c, const cv::Mat& stats, int k, double max_area) {
+  const int area = stats.at<int>(k, cv::CC_STAT_AREA);
+  const int w = stats.at<int>(k, cv::CC_STAT_WIDTH);
+  const int h = stats.at<int>(k, cv::CC_STAT_HEIGHT);
+  if (area < c.min_area_px || area > max_area || h < c.min_height_px) return false;
+  const double aspect = static_cast<double>(h) / w;
+  const double fill = static_cast<double>(area) / (static_cast<double>(w) * h);
+  return aspect >= c.min_aspect && aspect <= c.max_aspect && fill >= c.min_fill && fill <= c.max_fill;
+}
+
+// Writes `id` where labels == label inside the component's box and returns the mean pixel
+// value there (raw units).
+template <typename T>
+double paintComponent(const cv::Mat& image, const cv::Mat& labels, int label, const cv::Rect& box,
+                      std::uint8_t id, cv::Mat* mask) {
+  double sum = 0;
+  long count = 0;
+  for (int y = box.y; y < box.y + box.height; ++y) {
+    const int* lab = labels.ptr<int>(y);
+    const T* pix = image.ptr<T>(y);
+    std::uint8_t* out = mask->ptr<std::uint8_t>(y);
+    for (int x = box.x; x < box.x + box.width; ++x) {
+      if (lab[x] != label) continue;
+      out[x] = id;
+      sum += pix[x];
+      ++count;
+    }
+  }
+  return count > 0 ? sum / static_cast<double>(count) : 0.0;
+}
+
+}  // namespace
+
+ThermalPersonSegmenter::ThermalPersonSegmenter(const ThermalSegmenterConfig& config) : config_(config) {
+  config_.validate();
+  if (config_.open_radius_px > 0) open_kernel_ = squareKernel(config_.open_radius_px);
+  if (config_.close_radius_px > 0) close_kernel_ = squareKernel(config_.close_radius_px);
+}
+
+ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const {
+  if (image.empty()) throw std::invalid_argument("thermal image is empty");
+  const bool is16 = image.type() == CV_16UC1;
+  if (!is16 && image.type() != CV_8UC1) {
+    throw std::invalid_argument("thermal image must be 8- or 16-bit single-channel (got OpenCV type " +
+                                std::to_string(image.type()) + ")");
+  }
+  const ThermalSegmenterConfig& c = config_;
+  ThermalSegmentation result;
+  result.radiometric = is16 && c.scale == ThermalScale::kAuto && c.kelvin_per_count > 0.0;
+  const double full_scale = is16 ? 65535.0 : 255.0;
+  const FrameLevels levels = is16 ? sampleLevels<std::uint16_t>(image, c.background_step_px, c.relative_tail_percentile)
+                                  : sampleLevels<std::uint8_t>(image, c.background_step_px, c.relative_tail_percentile);
+
+  // The person band [lo, hi] in raw counts: one inRange pass gives the 8-bit binary mask.
+  double lo = 0, hi = full_scale;
+  if (result.radiometric) {
+    const double kpc = c.kelvin_per_count;
+    const double background_k = levels.median * kpc + c.kelvin_offset;
+    const double low_k = std::max(c.body_min_k, background_k + c.min_contrast_k);
+    lo = std::ceil((low_k - c.kelvin_offset) / kpc);
+    hi = std::floor((c.body_max_k - c.kelvin_offset) / kpc);
+    result.background_level = background_k;
+    result.threshold_low = low_k;
+    result.threshold_high = c.body_max_k;
+  } else {
+    const double contrast = std::max({c.relative_threshold * (levels.tail - levels.median),
+                                      c.relative_min_contrast_noise * levels.noise_sigma, 1.0});
+    lo = std::ceil(levels.median + contrast);
+    result.background_level = levels.median;
+    result.threshold_low = lo;
+    result.threshold_high = hi;
+  }
+  result.mask = cv::Mat::zeros(image.size(), CV_8UC1);
+  lo = std::max(lo, 0.0);
+  hi = std::min(hi, full_scale);
+  if (lo > hi) return result;  // the scene is warmer than the body band: nobody to find
+
+  cv::Mat binary;
+  cv::inRange(image, cv::Scalar(lo), cv::Scalar(hi), binary);
+  if (!open_kernel_.empty()) cv::morphologyEx(binary, binary, cv::MORPH_OPEN, open_kernel_);
+  if (!close_kernel_.empty()) cv::morphologyEx(binary, binary, cv::MORPH_CLOSE, close_kernel_);
+
+  cv::Mat labels, stats, centroids;
+  // BBDT explicitly: with statistics, OpenCV 4.6's default (Spaghetti) takes ~2.2 ms on a
+  // 640x512 mask, BBDT ~0.6 ms (bench/detection_benchmark.cpp measures the whole call).
+  const int n = cv::connectedComponentsWithStats(binary, labels, stats, centroids, 8, CV_32S, cv::CCL_BBDT);
+  result.components = n - 1;
+  const double max_area = c.max_area_fraction * static_cast<double>(image.total());
+  std::vector<int> kept;
+  for (int k = 1; k < n; ++k) {
+    if (passesShape(c, stats, k, max_area)) kept.push_back(k);
+  }
+  // Ids left to right (then top to bottom), at most 255 in an 8-bit mask.
+  std::sort(kept.begin(), kept.end(), [&](int a, int b) {
+    const double xa = centroids.at<double>(a, 0), xb = centroids.at<double>(b, 0);
+    return xa != xb ? xa < xb : centroids.at<double>(a, 1) < centroids.at<double>(b, 1);
+  });
+  if (kept.size() > 255) kept.resize(255);
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    const int k = kept[i];
+    ThermalPerson person;
+    person.id = static_cast<int>(i) + 1;
+    person.bbox = cv::Rect(stats.at<int>(k, cv::CC_STAT_LEFT), stats.at<int>(k, cv::CC_STAT_TOP),
+                           stats.at<int>(k, cv::CC_STAT_WIDTH), stats.at<int>(k, cv::CC_STAT_HEIGHT));
+    person.area_px = stats.at<int>(k, cv::CC_STAT_AREA);
+    person.centroid = cv::Point2d(centroids.at<double>(k, 0), centroids.at<double>(k, 1));
+    person.fill = static_cast<double>(person.area_px) / person.bbox.area();
+    const auto id = static_cast<std::uint8_t>(person.id);
+    const double mean = is16 ? paintComponent<std::uint16_t>(image, labels, k, person.bbox, id, &result.mask)
+                             : paintComponent<std::uint8_t>(image, labels, k, person.bbox, id, &result.mask);
+    person.mean_level = result.radiometric ? mean * c.kelvin_per_count + c.kelvin_offset : mean;
+    result.people.push_back(person);
+  }
+  return result;
+}
+
+}  // namespace detection
+}  // namespace thermal_lidar_calibration

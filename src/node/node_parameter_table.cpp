@@ -1,0 +1,75 @@
+// calibration_node's own keys (calibrate_bag ignores them). Adding one: a field in
+// NodeParameters (node/node_parameters.hpp) and one row below; then
+// scripts/update_parameter_docs.sh (see src/app/core_parameter_table.cpp for the row forms).
+// Rules across keys go in loadNodeParameters().
+
+#include "thermal_lidar_calibration/node/node_parameters.hpp"
+
+#include <stdexcept>
+
+namespace thermal_lidar_calibration {
+namespace ros_io {
+namespace {
+
+ParameterTable<NodeParameters> makeNodeParameterTable() {
+  ParameterTable<NodeParameters> t;
+  auto node = t.fields();
+  t.section("calibration_node only (calibrate_bag ignores these)");
+  node.text("output_file", &NodeParameters::output_file,
+            TextRule::required("must name the result YAML file"),
+            "result YAML; relative paths are under ROS_HOME");
+  node.text("dataset_bag", &NodeParameters::dataset_bag, TextRule::optional("not recorded"),
+            "bag recording every kept pair");
+  node.boolean("resume", &NodeParameters::resume,
+               "reload dataset_bag at start and continue collecting", "needs dataset_bag");
+  node.text("camera_info_file", &NodeParameters::camera_info_file,
+            TextRule::optional("use the topic thermal/camera_info"),
+            "camera_calibration YAML for intrinsics");
+  node.text("child_frame", &NodeParameters::child_frame,
+            TextRule::optional("<camera_frame>_calibrated"),
+            "frame published when the camera frame already has a parent");
+  node.integer("min_pairs_to_calibrate", &NodeParameters::min_pairs_to_calibrate, {1, 100000}, "",
+               "~calibrate service refused below this many pairs", "at most pairs_required");
+  node.real("progress_log_period_s", &NodeParameters::progress_log_period_s, aboveRange(0, 3600),
+            "s", "period of the \"collecting 12/60\" log line");
+  node.real("status_rate_hz", &NodeParameters::status_rate_hz, closedRange(0.1, 100), "Hz",
+            "~status publish rate");
+  node.real("tf_check_wait_s", &NodeParameters::tf_check_wait_s, closedRange(0, 60), "s",
+            "listen to /tf and /tf_static this long before publishing");
+  node.integer("overlay_max_points", &NodeParameters::overlay_max_points, {100, 10000000}, "",
+               "LiDAR points drawn per ~overlay image");
+  return t;
+}
+
+}  // namespace
+
+const ParameterTable<NodeParameters>& nodeParameterTable() {
+  static const ParameterTable<NodeParameters> table = makeNodeParameterTable();
+  return table;
+}
+
+NodeParameters loadNodeParameters(const ParameterSource& source) {
+  NodeParameters p;
+  p.core = loadCoreParameters(source);
+  nodeParameterTable().load(source, p);
+  // The minimum for ~calibrate cannot exceed what the node collects before optimizing anyway.
+  if (p.min_pairs_to_calibrate > p.core.pairs_required) {
+    if (source.has("min_pairs_to_calibrate")) {
+      throwBadParameter(source, "min_pairs_to_calibrate",
+                        "must be an integer in [1, " + std::to_string(p.core.pairs_required) + "]");
+    }
+    p.min_pairs_to_calibrate = p.core.pairs_required;
+  }
+  if (p.resume && p.dataset_bag.empty()) {
+    throw std::invalid_argument(
+        "parameter 'resume' = true but 'dataset_bag' is empty: name the dataset bag to resume");
+  }
+  return p;
+}
+
+std::vector<std::pair<std::string, std::string>> describeNodeParameters(const NodeParameters& p) {
+  return nodeParameterTable().describe(p);
+}
+
+}  // namespace ros_io
+}  // namespace thermal_lidar_calibration

@@ -1,0 +1,23 @@
+#include "thermal_lidar_calibration/node/parameter_catalog.hpp"
+
+#include "thermal_lidar_calibration/app/parameters.hpp"
+#include "thermal_lidar_calibration/node/node_parameters.hpp"
+
+namespace thermal_lidar_calibration {
+
+std::vector<ParameterDoc> allParameterDocs() {
+  std::vector<ParameterDoc> docs = coreParameterTable().docs();
+  for (auto& doc : ros_io::nodeParameterTable().docs()) docs.push_back(std::move(doc));
+  return docs;
+}
+
+const std::vector<std::string>& knownParameterKeys() {
+  static const std::vector<std::string> keys = [] {
+    std::vector<std::string> k;
+    for (const auto& doc : allParameterDocs()) k.push_back(doc.key);
+    return k;
+  }();
+  return keys;
+}
+
+}  // namespace thermal_lidar_calibration

@@ -1,0 +1,78 @@
+#include "thermal_lidar_calibration/ros/synthetic_bag_writer.hpp"
+
+#include "thermal_lidar_calibration/ros/calibrated_tf_publisher.hpp"
+#include "thermal_lidar_calibration/ros/msg_conversion.hpp"
+
+#include <boost/make_shared.hpp>
+#include <tf2_msgs/TFMessage.h>
+
+#include <random>
+#include <utility>
+
+namespace thermal_lidar_calibration {
+namespace ros_io {
+namespace {
+
+namespace syn = synthetic;
+
+// The connection header `rosbag record` stores for a latched topic: `rosbag play` then
+// republishes it latched, so a node that subscribes after the first instant still receives it.
+template <typename Msg>
+boost::shared_ptr<ros::M_string> latchedConnectionHeader() {
+  auto header = boost::make_shared<ros::M_string>();
+  (*header)["type"] = ros::message_traits::datatype<Msg>();
+  (*header)["md5sum"] = ros::message_traits::md5sum<Msg>();
+  (*header)["message_definition"] = ros::message_traits::definition<Msg>();
+  (*header)["callerid"] = "/make_synthetic_bag";
+  (*header)["latching"] = "1";
+  return header;
+}
+
+}  // namespace
+
+SyntheticBagWriter::SyntheticBagWriter(const std::string& path, SyntheticBagSettings settings,
+                                       const syn::SyntheticConfig& config)
+    : settings_(std::move(settings)), config_(config), info_template_(cameraInfoFromModel(config.rig.camera)) {
+  info_template_.header.frame_id = settings_.camera_frame;
+  bag_.open(path, rosbag::bagmode::Write);
+  bag_.setCompression(rosbag::compression::LZ4);
+  if (!settings_.camera_parent.empty()) {
+    // One message before everything else (what a latched /tf_static looks like in a bag). The
+    // camera's pose in its parent, as if the parent were the LiDAR frame: T_lidar_camera, the
+    // same transform calibration_node publishes.
+    const double stamp_s = config_.start_stamp_s - settings_.time_jitter_s - 0.01;
+    tf2_msgs::TFMessage msg;
+    msg.transforms.push_back(
+        toTransformMsg(config_.rig.truth, settings_.camera_parent, settings_.camera_frame, ros::Time(stamp_s)));
+    bag_.write("/tf_static", ros::Time(stamp_s), msg, latchedConnectionHeader<tf2_msgs::TFMessage>());
+  }
+}
+
+void SyntheticBagWriter::write(const syn::SyntheticFrame& f) {
+  const double jitter_s = settings_.time_jitter_s;
+  std::mt19937_64 jitter_rng(syn::mixSeed(config_.seed, 11, static_cast<std::uint64_t>(f.index)));
+  std::uniform_real_distribution<double> jitter(-jitter_s, jitter_s);
+  auto stampFor = [&]() { return jitter_s > 0.0 ? f.stamp_s + jitter(jitter_rng) : f.stamp_s; };
+  const double t_image = stampFor(), t_mask = stampFor(), t_clusters = stampFor();
+  const std::string& camera_frame = settings_.camera_frame;
+  const std::string& lidar_frame = settings_.lidar_frame;
+
+  bag_.write("/thermal/image_raw", ros::Time(t_image), encodeMonoImage(f.image, camera_frame, t_image));
+  if (settings_.camera_info) {
+    sensor_msgs::CameraInfo info = info_template_;
+    info.header.stamp = ros::Time(t_image);
+    bag_.write("/thermal/camera_info", info.header.stamp, info);
+  }
+  bag_.write("/thermal/human_mask", ros::Time(t_mask), encodeMonoImage(f.mask, camera_frame, t_mask));
+  bag_.write("/lidar/human_clusters", ros::Time(t_clusters),
+             encodeClusters(f.cluster_points, f.cluster_labels, lidar_frame, t_clusters));
+  if (config_.full_cloud) {
+    bag_.write("/lidar/points", ros::Time(t_clusters),
+               encodePointsWithIntensity(f.full_points, f.full_intensity, lidar_frame, t_clusters));
+  }
+}
+
+void SyntheticBagWriter::close() { bag_.close(); }
+
+}  // namespace ros_io
+}  // namespace thermal_lidar_calibration

@@ -1,0 +1,230 @@
+// make_synthetic_bag command-line parsing: "--flag value"; every mistake is a one-line UsageError.
+
+#include "thermal_lidar_calibration/tools/make_synthetic_bag_options.hpp"
+
+#include "thermal_lidar_calibration/tools/calibrate_bag_options.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <initializer_list>
+#include <stdexcept>
+
+namespace thermal_lidar_calibration {
+namespace ros_io {
+namespace {
+
+namespace syn = synthetic;
+
+double parseDouble(const std::string& flag, const std::string& text, double lo, double hi) {
+  std::size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || !std::isfinite(v)) throw UsageError(flag + " needs a number, got '" + text + "'");
+  if (v < lo || v > hi) {
+    throw UsageError(flag + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + text);
+  }
+  return v;
+}
+
+long long parseInt(const std::string& flag, const std::string& text, long long lo, long long hi) {
+  std::size_t used = 0;
+  long long v = 0;
+  try {
+    v = std::stoll(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size()) throw UsageError(flag + " needs an integer, got '" + text + "'");
+  if (v < lo || v > hi) {
+    throw UsageError(flag + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + text);
+  }
+  return v;
+}
+
+std::string oneOf(const std::string& flag, const std::string& value, std::initializer_list<const char*> allowed) {
+  for (const char* x : allowed) {
+    if (value == x) return value;
+  }
+  std::string list;
+  for (const char* x : allowed) list += std::string(list.empty() ? "" : "|") + x;
+  throw UsageError(flag + " must be one of " + list + ", got '" + value + "'");
+}
+
+// "ROT_DEG,TRANS_CM": two non-negative numbers, not both zero.
+void parseExtrinsicChange(const std::string& flag, const std::string& text, MakeSyntheticBagOptions& o) {
+  const std::size_t comma = text.find(',');
+  if (comma == std::string::npos || text.find(',', comma + 1) != std::string::npos) {
+    throw UsageError(flag + " needs ROT_DEG,TRANS_CM (e.g. 0.5,3), got '" + text + "'");
+  }
+  o.extrinsic_change_rotation_deg = parseDouble(flag + " ROT_DEG", text.substr(0, comma), 0.0, 45.0);
+  o.extrinsic_change_translation_cm = parseDouble(flag + " TRANS_CM", text.substr(comma + 1), 0.0, 100.0);
+  if (o.extrinsic_change_rotation_deg == 0.0 && o.extrinsic_change_translation_cm == 0.0) {
+    throw UsageError(flag + " 0,0 changes nothing: give a rotation or a translation");
+  }
+}
+
+// Checks that need every option: conflicts and derived defaults.
+void finish(MakeSyntheticBagOptions& o, bool change_given, double frame_rate_hz) {
+  if (o.output.empty()) throw UsageError("--output OUT.bag is required (see --help)");
+  if (o.lidar_frame.empty() || o.camera_frame.empty() || o.lidar_frame == o.camera_frame) {
+    throw UsageError("--lidar-frame and --camera-frame must be non-empty and different");
+  }
+  if (!o.camera_parent.empty() && o.camera_parent == o.camera_frame) {
+    throw UsageError("--camera-parent must differ from the camera frame");
+  }
+  if (o.truth.empty()) o.truth = o.output + ".truth.yaml";
+  if ((o.extrinsic_change_at_s >= 0.0) != change_given) {
+    throw UsageError("--extrinsic-change-at S and --extrinsic-change ROT_DEG,TRANS_CM go together");
+  }
+  const double duration_s = o.frames / frame_rate_hz;
+  if (change_given && !(o.extrinsic_change_at_s > 0.0 && o.extrinsic_change_at_s < duration_s)) {
+    throw UsageError("--extrinsic-change-at must be inside the drive, between 0 and " + std::to_string(duration_s) +
+                     " s (the drive's length), got " + std::to_string(o.extrinsic_change_at_s));
+  }
+}
+
+}  // namespace
+
+std::string makeSyntheticBagUsage() {
+  return
+      "Usage: make_synthetic_bag --output OUT.bag [options]\n"
+      "Renders a vehicle driving among people with a thermal camera and a LiDAR (ray cast) into a ROS 1\n"
+      "bag (LZ4): /thermal/image_raw, /thermal/camera_info, /thermal/human_mask, /lidar/human_clusters\n"
+      "[, /lidar/points, /tf_static], and writes the true extrinsic (p_C = R p_L + t) to a YAML file.\n"
+      "Options:\n"
+      "  --output FILE            bag to write (required)\n"
+      "  --truth FILE             truth YAML (default: <bag>.truth.yaml)\n"
+      "  --rig NAME               fieldsafe (640x512, HDL-32E; default) | ms2 (640x256, VLP-16)\n"
+      "  --seed N                 random seed (default 1); same seed, same bag content\n"
+      "  --frames N               frames at 10 Hz (default 1200)\n"
+      "  --duration S             alternative to --frames: seconds of driving\n"
+      "  --people N               total people in the field (default 0 = ~1.8 per group, automatic)\n"
+      "  --noise PRESET           clean (default) | realistic (mask edges +-2 px, 2 cm range noise,\n"
+      "                           3% missed people, 3% false clusters, 2% false mask blobs)\n"
+      "  --range-noise-m X        LiDAR range noise sigma, m (overrides the preset)\n"
+      "  --mask-edge-px N         random dilate/erode of each person mask by 0..N px\n"
+      "  --miss-rate P            per person, per frame, per modality miss probability\n"
+      "  --false-cluster-rate P   probability a post/bush in range is reported as a person cluster\n"
+      "  --false-mask-rate P      per frame probability of a false person blob in the mask\n"
+      "  --mask-style S           ids (default: person i = i) | binary (all persons 255)\n"
+      "  --image-encoding E       mono8 (default) | mono16\n"
+      "  --full-cloud             also write /lidar/points (x,y,z,intensity; decimated)\n"
+      "  --no-camera-info         do not write /thermal/camera_info\n"
+      "  --camera-parent FRAME    also write /tf_static with FRAME -> camera frame\n"
+      "  --time-jitter-s X        random +-X s offset per topic and frame (default 0)\n"
+      "  --lidar-frame F          default velodyne\n"
+      "  --camera-frame F         default thermal_optical\n"
+      "  --extrinsic-change-at S  a bump S seconds after the start of the drive (with --extrinsic-change)\n"
+      "  --extrinsic-change ROT_DEG,TRANS_CM\n"
+      "                           the camera turns ROT_DEG about a random axis and shifts TRANS_CM in\n"
+      "                           a random direction (drawn from the seed); the truth file keeps the\n"
+      "                           extrinsic at the start and adds extrinsic_change: {at_stamp, after, ...}\n"
+      "  --empty-image-region R   left | centre | right: nobody is ever seen in that third of the image\n"
+      "                           (people stand on the other side of the path; frames where someone\n"
+      "                           would show there leave them out; no false detections there)\n"
+      "  --help                   this text\n"
+      "Exit codes: 0 success, 1 failure while writing, 2 bad arguments.\n";
+}
+
+MakeSyntheticBagOptions parseMakeSyntheticBagOptions(const std::vector<std::string>& args) {
+  MakeSyntheticBagOptions o;
+  const double frame_rate_hz = syn::SyntheticConfig{}.frame_rate_hz;
+  bool frames_set = false, duration_set = false, change_given = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> const std::string& {
+      if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
+      return args[++i];
+    };
+    if (a == "--help" || a == "-h") {
+      o.help = true;
+      return o;
+    } else if (a == "--output") {
+      o.output = value();
+    } else if (a == "--truth") {
+      o.truth = value();
+    } else if (a == "--rig") {
+      o.rig = oneOf(a, value(), {"fieldsafe", "ms2"});
+    } else if (a == "--seed") {
+      o.seed = static_cast<std::uint64_t>(parseInt(a, value(), 0, 9007199254740991LL));
+    } else if (a == "--frames") {
+      o.frames = static_cast<int>(parseInt(a, value(), 1, 100000));
+      frames_set = true;
+    } else if (a == "--duration") {
+      const double seconds = parseDouble(a, value(), 0.1, 10000.0);
+      o.frames = std::max(1, static_cast<int>(std::lround(seconds * frame_rate_hz)));
+      duration_set = true;
+    } else if (a == "--people") {
+      o.people = static_cast<int>(parseInt(a, value(), 0, 250));
+    } else if (a == "--noise") {
+      o.noise = oneOf(a, value(), {"clean", "realistic"});
+    } else if (a == "--range-noise-m") {
+      o.range_noise_m = parseDouble(a, value(), 0.0, 1.0);
+    } else if (a == "--mask-edge-px") {
+      o.mask_edge_px = static_cast<int>(parseInt(a, value(), 0, 20));
+    } else if (a == "--miss-rate") {
+      o.miss_rate = parseDouble(a, value(), 0.0, 1.0);
+    } else if (a == "--false-cluster-rate") {
+      o.false_cluster_rate = parseDouble(a, value(), 0.0, 1.0);
+    } else if (a == "--false-mask-rate") {
+      o.false_mask_rate = parseDouble(a, value(), 0.0, 1.0);
+    } else if (a == "--mask-style") {
+      o.mask_style = oneOf(a, value(), {"ids", "binary"});
+    } else if (a == "--image-encoding") {
+      o.image_encoding = oneOf(a, value(), {"mono8", "mono16"});
+    } else if (a == "--full-cloud") {
+      o.full_cloud = true;
+    } else if (a == "--no-camera-info") {
+      o.camera_info = false;
+    } else if (a == "--camera-parent") {
+      o.camera_parent = value();
+    } else if (a == "--time-jitter-s") {
+      o.time_jitter_s = parseDouble(a, value(), 0.0, 1.0);
+    } else if (a == "--lidar-frame") {
+      o.lidar_frame = value();
+    } else if (a == "--camera-frame") {
+      o.camera_frame = value();
+    } else if (a == "--extrinsic-change-at") {
+      o.extrinsic_change_at_s = parseDouble(a, value(), 0.0, 1e6);
+    } else if (a == "--extrinsic-change") {
+      parseExtrinsicChange(a, value(), o);
+      change_given = true;
+    } else if (a == "--empty-image-region") {
+      o.empty_image_region = oneOf(a, value(), {"left", "centre", "right"});
+    } else {
+      throw UsageError("unknown argument '" + a + "' (see --help)");
+    }
+  }
+  if (frames_set && duration_set) throw UsageError("give either --frames or --duration, not both");
+  finish(o, change_given, frame_rate_hz);
+  return o;
+}
+
+syn::SyntheticConfig syntheticConfigFrom(const MakeSyntheticBagOptions& o) {
+  syn::SyntheticConfig c;
+  c.rig = syn::rigByName(o.rig);
+  c.seed = o.seed;
+  c.frames = o.frames;
+  c.scene.people = o.people;
+  c.noise = syn::NoiseConfig::preset(o.noise);
+  if (o.range_noise_m >= 0) c.noise.range_sigma_m = o.range_noise_m;
+  if (o.mask_edge_px >= 0) c.noise.mask_edge_px = o.mask_edge_px;
+  if (o.miss_rate >= 0) c.noise.miss_rate = o.miss_rate;
+  if (o.false_cluster_rate >= 0) c.noise.false_cluster_rate = o.false_cluster_rate;
+  if (o.false_mask_rate >= 0) c.noise.false_mask_rate = o.false_mask_rate;
+  c.mask_style = o.mask_style == "binary" ? syn::MaskStyle::kBinary : syn::MaskStyle::kIds;
+  c.image_depth = o.image_encoding == "mono16" ? syn::ImageDepth::kMono16 : syn::ImageDepth::kMono8;
+  c.full_cloud = o.full_cloud;
+  c.extrinsic_change.at_s = o.extrinsic_change_at_s;
+  c.extrinsic_change.rotation_deg = o.extrinsic_change_rotation_deg;
+  c.extrinsic_change.translation_cm = o.extrinsic_change_translation_cm;
+  c.empty_image_region = syn::imageRegionByName(o.empty_image_region);
+  return c;
+}
+
+}  // namespace ros_io
+}  // namespace thermal_lidar_calibration

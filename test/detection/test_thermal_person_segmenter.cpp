@@ -1,0 +1,212 @@
+// Thermal person segmentation on crafted radiometric (0.04 K/count) and 8-bit images.
+
+#include "thermal_lidar_calibration/detection/image_flip.hpp"
+#include "thermal_lidar_calibration/detection/thermal_person_segmenter.hpp"
+
+#include "../support/test_files.hpp"
+#include "../support/thermal_scene.hpp"
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+namespace thermal_lidar_calibration {
+namespace {
+
+using detection::ThermalPersonSegmenter;
+using detection::ThermalScale;
+using detection::ThermalSegmenterConfig;
+using test_support::drawAnimal;
+using test_support::drawPerson;
+using test_support::errorOf;
+using test_support::thermalBackground;
+
+const cv::Size kFrame(640, 512);
+
+// The ids present in a mask, ascending, background excluded.
+std::vector<int> idsOf(const cv::Mat& mask) {
+  std::vector<int> ids;
+  for (int v = 1; v < 256; ++v) {
+    if (cv::countNonZero(mask == v) > 0) ids.push_back(v);
+  }
+  return ids;
+}
+
+TEST(ThermalPersonSegmenter, WarmBlobOfKnownSizeIsOnePersonWithItsAreaAndBox) {
+  cv::Mat image = thermalBackground(kFrame, 290.0, 0.1, 3);
+  cv::Mat drawn = cv::Mat::zeros(kFrame, CV_8UC1);
+  cv::ellipse(drawn, cv::Point(300, 250), cv::Size(15, 45), 0, 0, 360, cv::Scalar(255), cv::FILLED);
+  image.setTo(cv::Scalar(std::round(test_support::countsOf(306.0))), drawn);
+  const int drawn_area = cv::countNonZero(drawn);
+  const cv::Rect drawn_box = cv::boundingRect(drawn);
+
+  const auto result = ThermalPersonSegmenter().segment(image);
+  ASSERT_EQ(result.mask.size(), kFrame);
+  ASSERT_EQ(result.mask.type(), CV_8UC1);
+  ASSERT_EQ(result.people.size(), 1u);
+  const auto& p = result.people[0];
+  EXPECT_EQ(p.id, 1);
+  EXPECT_EQ(idsOf(result.mask), std::vector<int>{1});
+  EXPECT_NEAR(p.area_px, drawn_area, 0.02 * drawn_area);
+  EXPECT_EQ(cv::countNonZero(result.mask), p.area_px);
+  EXPECT_LE(std::abs(p.bbox.x - drawn_box.x) + std::abs(p.bbox.width - drawn_box.width), 2);
+  EXPECT_LE(std::abs(p.bbox.y - drawn_box.y) + std::abs(p.bbox.height - drawn_box.height), 2);
+  EXPECT_NEAR(p.centroid.x, 300, 0.5);
+  EXPECT_NEAR(p.centroid.y, 250, 0.5);
+  EXPECT_TRUE(result.radiometric);
+  EXPECT_NEAR(p.mean_level, 306.0, 0.05);  // kelvin
+  EXPECT_NEAR(result.background_level, 290.0, 0.1);
+}
+
+TEST(ThermalPersonSegmenter, TwoPeopleGetDistinctIdsLeftToRight) {
+  cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 4);
+  drawPerson(image, 420, 100, 150, 307.0, 301.0);
+  drawPerson(image, 180, 150, 110, 306.0, 300.0);
+  const auto result = ThermalPersonSegmenter().segment(image);
+  ASSERT_EQ(result.people.size(), 2u);
+  EXPECT_LT(result.people[0].centroid.x, 250);
+  EXPECT_GT(result.people[1].centroid.x, 350);
+  EXPECT_EQ(idsOf(result.mask), (std::vector<int>{1, 2}));
+  EXPECT_NEAR(result.people[1].bbox.height, 150, 3);
+  EXPECT_EQ(result.mask.at<std::uint8_t>(100 + 75, 420), 2);
+}
+
+TEST(ThermalPersonSegmenter, AnimalAtBodyTemperatureIsNotAPerson) {
+  cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 5);
+  drawAnimal(image, 300, 300, 90, 307.0);  // 90 px long, ~50 px high: height / width < 1
+  EXPECT_TRUE(ThermalPersonSegmenter().segment(image).people.empty());
+  drawPerson(image, 500, 200, 120, 307.0, 301.0);
+  EXPECT_EQ(ThermalPersonSegmenter().segment(image).people.size(), 1u);
+}
+
+TEST(ThermalPersonSegmenter, HotMachineryAboveTheBodyBandIsIgnored) {
+  cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 6);
+  test_support::fillKelvin(image, cv::Rect(100, 200, 40, 90), 345.0);  // an engine, person-shaped box
+  const auto result = ThermalPersonSegmenter().segment(image);
+  EXPECT_TRUE(result.people.empty());
+  EXPECT_EQ(cv::countNonZero(result.mask), 0);
+}
+
+TEST(ThermalPersonSegmenter, SunHeatedPoleAndGroundFailTheShapeFilters) {
+  cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 7);
+  test_support::fillKelvin(image, cv::Rect(0, 380, 640, 132), 300.0);   // sun-heated ground patch
+  test_support::fillKelvin(image, cv::Rect(300, 60, 6, 200), 303.0);    // sun-heated pole
+  EXPECT_TRUE(ThermalPersonSegmenter().segment(image).people.empty());
+}
+
+TEST(ThermalPersonSegmenter, RadiometricBandNeedsBodyTemperatureRelativeModeDoesNot) {
+  // A person-shaped region 10 K above a cold scene but below the body band (a cold night
+  // scene seen by a camera whose offset is wrong, or a warm object that is not a person).
+  cv::Mat image = thermalBackground(kFrame, 275.0, 0.1, 8);
+  drawPerson(image, 320, 150, 140, 287.0, 285.0);
+  EXPECT_TRUE(ThermalPersonSegmenter().segment(image).people.empty());
+  ThermalSegmenterConfig relative;
+  relative.scale = ThermalScale::kRelative;
+  const auto found = ThermalPersonSegmenter(relative).segment(image);
+  EXPECT_FALSE(found.radiometric);
+  EXPECT_EQ(found.people.size(), 1u);
+  // The right kelvin_offset (+20 K) brings the same pixels into the band.
+  ThermalSegmenterConfig shifted;
+  shifted.kelvin_offset = 20.0;
+  EXPECT_EQ(ThermalPersonSegmenter(shifted).segment(image).people.size(), 1u);
+}
+
+TEST(ThermalPersonSegmenter, BandFollowsTheBackgroundOnAWarmDay) {
+  ThermalPersonSegmenter segmenter;
+  cv::Mat warm = thermalBackground(kFrame, 304.0, 0.1, 9);
+  drawPerson(warm, 320, 150, 140, 309.0, 308.0);
+  const auto result = segmenter.segment(warm);
+  EXPECT_EQ(result.people.size(), 1u);
+  EXPECT_NEAR(result.threshold_low, 304.0 + 3.0, 0.1);  // background + min_contrast_k
+  // A scene as warm as skin: nothing stands out, nothing is reported.
+  cv::Mat hot = thermalBackground(kFrame, 311.0, 0.1, 9);
+  drawPerson(hot, 320, 150, 140, 309.0, 308.0);
+  EXPECT_TRUE(segmenter.segment(hot).people.empty());
+}
+
+TEST(ThermalPersonSegmenter, ColdClothingLeavesOnlyHeadAndHandsWhichAreNotAPerson) {
+  // Documents a known miss: a thick cold coat below the body band.
+  cv::Mat image = thermalBackground(kFrame, 280.0, 0.1, 10);
+  drawPerson(image, 320, 150, 140, 306.0, 284.0);
+  EXPECT_TRUE(ThermalPersonSegmenter().segment(image).people.empty());
+  ThermalSegmenterConfig coats;  // a lower band edge for a cold-weather site finds it again
+  coats.body_min_k = 283.0;
+  EXPECT_EQ(ThermalPersonSegmenter(coats).segment(image).people.size(), 1u);
+}
+
+TEST(ThermalPersonSegmenter, RelativeModeOn8BitAnd16BitUncalibratedImages) {
+  cv::Mat grey(kFrame, CV_8UC1, cv::Scalar(60));
+  cv::Mat noise(kFrame, CV_8UC1);
+  cv::randn(noise, 0, 3);
+  grey += noise;
+  cv::Mat drawn = cv::Mat::zeros(kFrame, CV_8UC1);
+  cv::ellipse(drawn, cv::Point(200, 260), cv::Size(20, 60), 0, 0, 360, cv::Scalar(255), cv::FILLED);
+  grey.setTo(cv::Scalar(200), drawn);
+  const auto r8 = ThermalPersonSegmenter().segment(grey);
+  EXPECT_FALSE(r8.radiometric);
+  ASSERT_EQ(r8.people.size(), 1u);
+  EXPECT_NEAR(r8.people[0].mean_level, 200.0, 1.0);
+
+  cv::Mat raw = thermalBackground(kFrame, 290.0, 0.1, 11);
+  drawPerson(raw, 320, 150, 140, 288.0 + 5.0, 288.0 + 4.0);  // 3-5 K warm, below the band
+  ThermalSegmenterConfig uncalibrated;
+  uncalibrated.kelvin_per_count = 0.0;  // 16-bit but not radiometric: relative
+  const auto r16 = ThermalPersonSegmenter(uncalibrated).segment(raw);
+  EXPECT_FALSE(r16.radiometric);
+  EXPECT_EQ(r16.people.size(), 1u);
+}
+
+TEST(ThermalPersonSegmenter, NoiseAloneFindsNobodyInEitherMode) {
+  const cv::Mat noise16 = thermalBackground(kFrame, 290.0, 0.3, 12);
+  EXPECT_TRUE(ThermalPersonSegmenter().segment(noise16).people.empty());
+  ThermalSegmenterConfig relative;
+  relative.scale = ThermalScale::kRelative;
+  EXPECT_TRUE(ThermalPersonSegmenter(relative).segment(noise16).people.empty());
+  cv::Mat noise8(kFrame, CV_8UC1);
+  cv::randn(noise8, 90, 4);
+  EXPECT_TRUE(ThermalPersonSegmenter().segment(noise8).people.empty());
+}
+
+TEST(ThermalPersonSegmenter, RejectsImagesItCannotRead) {
+  ThermalPersonSegmenter segmenter;
+  EXPECT_NE(errorOf([&] { segmenter.segment(cv::Mat()); }).find("empty"), std::string::npos);
+  EXPECT_NE(errorOf([&] { segmenter.segment(cv::Mat(10, 10, CV_8UC3)); }).find("single-channel"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { segmenter.segment(cv::Mat(10, 10, CV_32FC1)); }).find("single-channel"),
+            std::string::npos);
+}
+
+TEST(ThermalSegmenterConfig, ValidateNamesKeyValueAndRange) {
+  ThermalSegmenterConfig c;
+  EXPECT_NO_THROW(c.validate());
+  c.min_area_px = 0;
+  EXPECT_EQ(errorOf([&] { c.validate(); }), "parameter 'thermal_min_area_px' = 0: must be in [1, 10000000]");
+  c = ThermalSegmenterConfig();
+  c.body_max_k = 290.0;  // below body_min_k
+  EXPECT_EQ(errorOf([&] { c.validate(); }),
+            "parameters 'thermal_body_min_k' = 295 and 'thermal_body_max_k' = 290: thermal_body_min_k must be "
+            "below thermal_body_max_k");
+  c = ThermalSegmenterConfig();
+  c.kelvin_per_count = -0.01;
+  EXPECT_EQ(errorOf([&] { ThermalPersonSegmenter{c}; }), "parameter 'kelvin_per_count' = -0.01: must be in [0, 10]");
+  EXPECT_EQ(errorOf([] { detection::parseThermalScale("kelvin"); }),
+            "parameter 'thermal_scale' = kelvin: must be one of {auto, relative}");
+}
+
+TEST(ImageFlip, FlipsVerticallyHorizontallyOrBoth) {
+  const cv::Mat image = (cv::Mat_<std::uint16_t>(2, 3) << 1, 2, 3, 4, 5, 6);
+  auto at = [](const cv::Mat& m, int r, int c) { return m.at<std::uint16_t>(r, c); };
+  const cv::Mat v = detection::flipImage(image, detection::ImageFlip::kVertical);
+  EXPECT_EQ(at(v, 0, 0), 4);
+  EXPECT_EQ(at(v, 1, 2), 3);
+  const cv::Mat h = detection::flipImage(image, detection::ImageFlip::kHorizontal);
+  EXPECT_EQ(at(h, 0, 0), 3);
+  const cv::Mat b = detection::flipImage(image, detection::ImageFlip::kBoth);
+  EXPECT_EQ(at(b, 0, 0), 6);
+  EXPECT_EQ(at(detection::flipImage(image, detection::ImageFlip::kNone), 0, 0), 1);
+  EXPECT_EQ(detection::parseImageFlip("both"), detection::ImageFlip::kBoth);
+  EXPECT_STREQ(detection::toString(detection::parseImageFlip("vertical")), "vertical");
+  EXPECT_NE(errorOf([] { detection::parseImageFlip("upside_down"); }).find("none, vertical"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace thermal_lidar_calibration
