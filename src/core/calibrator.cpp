@@ -1,6 +1,7 @@
 #include "thermal_lidar_calibration/core/calibrator.hpp"
 
 #include "thermal_lidar_calibration/core/evolutionary_optimizer.hpp"
+#include "thermal_lidar_calibration/core/inlier_selection.hpp"
 #include "thermal_lidar_calibration/core/local_refinement.hpp"
 #include "thermal_lidar_calibration/core/outlier_rejection.hpp"
 
@@ -11,43 +12,6 @@
 #include <stdexcept>
 
 namespace thermal_lidar_calibration {
-namespace {
-
-// Pairs the refinement may use: all, or, with exclude_truncated, those whose people do not
-// touch the image border, as long as that leaves at least half of them.
-std::vector<std::size_t> refinementCandidates(const LossEvaluator& loss, bool exclude_truncated) {
-  const std::size_t n = loss.pairCount();
-  std::vector<std::size_t> all, whole;
-  for (std::size_t i = 0; i < n; ++i) {
-    all.push_back(i);
-    if (!loss.maskTouchesImageBorder(i)) whole.push_back(i);
-  }
-  return exclude_truncated && whole.size() * 2 >= n ? whole : all;
-}
-
-// Candidates whose Eq. (1) loss is within the threshold; if fewer than half pass (the estimate
-// is still far off), the better half, so the next refinement has enough pairs to move.
-std::vector<std::size_t> selectInliers(const LossEvaluator& loss, const Extrinsic& estimate,
-                                       double threshold_px,
-                                       const std::vector<std::size_t>& candidates) {
-  const std::size_t n = candidates.size();
-  std::vector<std::pair<double, std::size_t>> scored;
-  for (std::size_t i : candidates) scored.emplace_back(loss.pairLoss(i, estimate), i);
-  std::vector<std::size_t> inliers;
-  for (const auto& [value, i] : scored) {
-    if (value <= threshold_px) inliers.push_back(i);
-  }
-  if (inliers.size() * 2 < n) {
-    std::stable_sort(scored.begin(), scored.end(),
-                     [](const auto& a, const auto& b) { return a.first < b.first; });
-    inliers.clear();
-    for (std::size_t k = 0; k < (n + 1) / 2; ++k) inliers.push_back(scored[k].second);
-    std::sort(inliers.begin(), inliers.end());
-  }
-  return inliers;
-}
-
-}  // namespace
 
 CalibrationResult calibrate(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
                             const CalibrationConfig& config, const ProgressCallback& progress) {
