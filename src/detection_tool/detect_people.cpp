@@ -1,9 +1,10 @@
 #include "thermal_lidar_calibration/detection_tool/detect_people.hpp"
 
+#include "thermal_lidar_calibration/app/detection_parameters.hpp"
+#include "thermal_lidar_calibration/app/parameter_source.hpp"
 #include "thermal_lidar_calibration/detection/lidar_person_detector.hpp"
 #include "thermal_lidar_calibration/detection/thermal_person_segmenter.hpp"
 #include "thermal_lidar_calibration/detection_tool/detection_files.hpp"
-#include "thermal_lidar_calibration/detection_tool/detection_parameters.hpp"
 #include "thermal_lidar_calibration/detection_tool/detection_views.hpp"
 
 #include <iomanip>
@@ -59,7 +60,10 @@ void detectInCloud(const DetectPeopleOptions& o, const DetectionParameters& para
 }  // namespace
 
 void runDetectPeople(const DetectPeopleOptions& o, std::ostream& out, std::ostream& err) {
-  const DetectionParameters params;  // --config: with the parameter table (next commit)
+  // --config: the flat keys of config/default.yaml; a partial file overrides only what it names
+  // (keys of the calibration itself are ignored here).
+  const DetectionParameters params =
+      o.config.empty() ? DetectionParameters{} : loadDetectionParameters(*makeYamlParameterSource(o.config));
   if (!o.image.empty()) {
     segmentImage(o, params, out);
   } else {

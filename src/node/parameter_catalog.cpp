@@ -1,5 +1,6 @@
 #include "thermal_lidar_calibration/node/parameter_catalog.hpp"
 
+#include "thermal_lidar_calibration/app/detection_parameters.hpp"
 #include "thermal_lidar_calibration/app/parameters.hpp"
 #include "thermal_lidar_calibration/node/node_parameters.hpp"
 
@@ -7,6 +8,7 @@ namespace thermal_lidar_calibration {
 
 std::vector<ParameterDoc> allParameterDocs() {
   std::vector<ParameterDoc> docs = coreParameterTable().docs();
+  for (auto& doc : detectionParameterTable().docs()) docs.push_back(std::move(doc));
   for (auto& doc : ros_io::nodeParameterTable().docs()) docs.push_back(std::move(doc));
   return docs;
 }

@@ -141,6 +141,28 @@ TEST_F(DetectPeopleCli, KelvinFlagsAndFlip) {
   EXPECT_EQ(cv::imread(path("m.png"), cv::IMREAD_UNCHANGED).at<std::uint8_t>(256 - 90, 100), 1);
 }
 
+TEST_F(DetectPeopleCli, ConfigFileSetsTheSameKeysAsTheNodelets) {
+  cv::Mat image = test_support::thermalBackground(cv::Size(320, 256), 275.0, 0.1, 3);
+  test_support::drawPerson(image, 100, 30, 120, 287.0, 285.0);
+  cv::Mat centi;
+  image.convertTo(centi, CV_16U, 4.0);  // centi-kelvin counts
+  ASSERT_TRUE(cv::imwrite(path("centi.png"), centi));
+  std::ofstream(path("tlinear.yaml")) << "kelvin_per_count: 0.01\nkelvin_offset: 20\n";
+  EXPECT_EQ(lineCount(run("--image " + path("centi.png") + " --mask-out " + path("m.png") + " --config " +
+                          path("tlinear.yaml")).out), 1);
+  // The command line wins over the file.
+  EXPECT_EQ(run("--image " + path("centi.png") + " --mask-out " + path("m.png") + " --config " + path("tlinear.yaml") +
+                " --kelvin-offset 0").out, "no person found\n");
+  // A cloud read with a range limit from the file.
+  const auto scan = scanWithTwoPeople();
+  pcl::PointCloud<pcl::PointXYZ> xyz;
+  for (const auto& p : scan.points) xyz.push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+  ASSERT_EQ(pcl::io::savePCDFileBinary(path("scan.pcd"), xyz), 0);
+  std::ofstream(path("near.yaml")) << "lidar_max_range_m: 9\n";
+  EXPECT_EQ(lineCount(run("--cloud " + path("scan.pcd") + " --clusters-out " + path("o.pcd") + " --config " +
+                          path("near.yaml")).out), 1);
+}
+
 TEST_F(DetectPeopleCli, NobodyFoundIsExitZero) {
   ASSERT_TRUE(cv::imwrite(path("empty.png"), test_support::thermalBackground(cv::Size(160, 120), 290.0, 0.2, 4)));
   const RunResult r = run("--image " + path("empty.png") + " --mask-out " + path("m.png"));
@@ -226,6 +248,7 @@ TEST_F(DetectPeopleCli, BadInputIsOneLineAndExitOne) {
   ASSERT_TRUE(cv::imwrite(path("colour.png"), colour));
   ASSERT_TRUE(cv::imwrite(path("float.tiff"), cv::Mat(8, 8, CV_32FC1, cv::Scalar(1.5))));
   ASSERT_TRUE(cv::imwrite(path("ok.png"), test_support::thermalBackground(cv::Size(64, 48), 290.0)));
+  std::ofstream(path("bad.yaml")) << "lidar_min_points: 0\n";
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"--image " + path("missing.png") + " --mask-out " + path("m.png"), "no such file"},
       {"--image " + path("notes.png") + " --mask-out " + path("m.png"), "not a readable PNG, TIFF or JPEG"},
@@ -241,6 +264,9 @@ TEST_F(DetectPeopleCli, BadInputIsOneLineAndExitOne) {
       {"--cloud " + path("broken.pcd") + " --clusters-out " + path("o.pcd"), "not a readable PCD file"},
       {"--cloud " + path("xy.pcd") + " --clusters-out " + path("o.pcd"), "no 'z' field"},
       {"--cloud " + dir_ + " --clusters-out " + path("o.pcd"), "not a regular file"},
+      {"--image " + path("ok.png") + " --mask-out " + path("m.png") + " --config " + path("missing.yaml"), "missing.yaml"},
+      {"--image " + path("ok.png") + " --mask-out " + path("m.png") + " --config " + path("bad.yaml"),
+       "parameter 'lidar_min_points' = 0: must be an integer in [1, 1000000]"},
   };
   for (const auto& [args, reason] : cases) {
     const RunResult r = run(args);

@@ -1,5 +1,6 @@
 // The parameter table: defaults = Table 1, overrides from YAML, and the error messages.
 
+#include "thermal_lidar_calibration/app/detection_parameters.hpp"
 #include "thermal_lidar_calibration/app/parameters.hpp"
 #include "thermal_lidar_calibration/node/node_parameters.hpp"
 #include "thermal_lidar_calibration/app/unknown_parameters.hpp"
@@ -151,6 +152,7 @@ TEST(Parameters, DescribeListsEveryCoreKeyOnce) {
 TEST(Parameters, KnownKeysAreTheDescribedKeysEachOnce) {
   std::vector<std::string> described;
   for (const auto& kv : describeCoreParameters(CoreParameters{})) described.push_back(kv.first);
+  for (const auto& kv : describeDetectionParameters(DetectionParameters{})) described.push_back(kv.first);
   for (const auto& kv : describeNodeParameters(NodeParameters{})) described.push_back(kv.first);
   EXPECT_EQ(knownParameterKeys(), described);
   std::vector<std::string> sorted = knownParameterKeys();

@@ -1,5 +1,6 @@
 #pragma once
-// Every parameter table of the package, in documentation order: the core table, then the
+// Every parameter table of the package, in documentation order: the core table, the person
+// detectors' table (read by the detection nodelets and calibrate_bag --detect), then the
 // node-only table. A part that adds its own table lists it once in parameter_catalog.cpp;
 // the known keys (typo warnings) and the documentation (config/default.yaml, README) follow.
 

@@ -1,0 +1,149 @@
+// The person detectors' parameter table (same machinery and row forms as
+// src/app/core_parameter_table.cpp). Adding a key: a field with its default in the detector's
+// Config struct (detection/thermal_segmenter_config.hpp, detection/lidar_detector_config.hpp),
+// its range in that struct's validate(), one row below; then scripts/update_parameter_docs.sh.
+
+#include "thermal_lidar_calibration/app/detection_parameters.hpp"
+
+namespace thermal_lidar_calibration {
+namespace {
+
+using detection::LidarGroundConfig;
+using detection::LidarPersonConfig;
+using detection::ThermalScale;
+using detection::ThermalSegmenterConfig;
+
+void addThermalRows(ParameterTable<DetectionParameters>& t) {
+  auto th = t.group<ThermalSegmenterConfig>([](DetectionParameters& p) -> ThermalSegmenterConfig& { return p.thermal; });
+  t.section("Thermal person segmentation (detectors; issue #7)");
+  th.real("kelvin_per_count", &ThermalSegmenterConfig::kelvin_per_count, closedRange(0, 10), "K/count",
+          "radiometric scale of 16-bit images: kelvin = counts * kelvin_per_count + kelvin_offset",
+          "0 = not radiometric; FLIR Ax5 high-resolution linear 0.04, TLinear cores often 0.01");
+  th.real("kelvin_offset", &ThermalSegmenterConfig::kelvin_offset, closedRange(-10000, 10000), "K",
+          "radiometric offset (see kelvin_per_count)");
+  th.choice("thermal_scale", &ThermalSegmenterConfig::scale,
+            {{"auto", ThermalScale::kAuto}, {"relative", ThermalScale::kRelative}}, "must be 'auto' or 'relative'",
+            "auto = radiometric for 16-bit images when kelvin_per_count > 0, else relative to the frame");
+  th.real("thermal_body_min_k", &ThermalSegmenterConfig::body_min_k, closedRange(150, 400), "K",
+          "radiometric: coolest apparent body surface (clothed) counted as a person", "below thermal_body_max_k");
+  th.real("thermal_body_max_k", &ThermalSegmenterConfig::body_max_k, aboveRange(150, 500), "K",
+          "radiometric: warmest apparent body surface (bare skin ~306-309 K); hotter is machinery");
+  th.real("thermal_min_contrast_k", &ThermalSegmenterConfig::min_contrast_k, closedRange(0, 100), "K",
+          "radiometric: a person pixel is at least this much warmer than the frame's background level");
+  th.real("thermal_relative_threshold", &ThermalSegmenterConfig::relative_threshold, aboveRange(0, 1), "",
+          "relative mode: threshold at this fraction of the way from the background level to the warm tail");
+  th.real("thermal_relative_tail_percentile", &ThermalSegmenterConfig::relative_tail_percentile,
+          closedRange(50, 100), "%", "relative mode: the warm tail's percentile of the frame");
+  th.real("thermal_relative_min_contrast_noise", &ThermalSegmenterConfig::relative_min_contrast_noise,
+          closedRange(0, 1000), "noise sigmas",
+          "relative mode: the threshold is at least this many sigmas of the pixel noise (from neighbouring-pixel "
+          "differences) above the background level");
+  th.integer("thermal_background_step_px", &ThermalSegmenterConfig::background_step_px, {1, 64}, "px",
+             "background level = median of every n-th pixel in x and y");
+  th.integer("thermal_open_radius_px", &ThermalSegmenterConfig::open_radius_px, {0, 10}, "px",
+             "morphological opening (square 2r+1) removes specks and thin bridges; 0 = none");
+  th.integer("thermal_close_radius_px", &ThermalSegmenterConfig::close_radius_px, {0, 10}, "px",
+             "morphological closing fills small holes and seams; 0 = none");
+  th.integer("thermal_min_area_px", &ThermalSegmenterConfig::min_area_px, {1, 10000000}, "px",
+             "smallest person region");
+  th.real("thermal_max_area_fraction", &ThermalSegmenterConfig::max_area_fraction, aboveRange(0, 1), "",
+          "largest person region, as a fraction of the image");
+  th.integer("thermal_min_height_px", &ThermalSegmenterConfig::min_height_px, {1, 100000}, "px",
+             "smallest bounding-box height of a person");
+  th.real("thermal_min_aspect", &ThermalSegmenterConfig::min_aspect, aboveRange(0, 100), "",
+          "bounding-box height / width at least (an animal is wider than high)");
+  th.real("thermal_max_aspect", &ThermalSegmenterConfig::max_aspect, aboveRange(0, 100), "",
+          "bounding-box height / width at most (a pole is thinner)", "at least thermal_min_aspect");
+  th.real("thermal_min_fill", &ThermalSegmenterConfig::min_fill, closedRange(0, 1), "",
+          "region area / bounding-box area at least");
+  th.real("thermal_max_fill", &ThermalSegmenterConfig::max_fill, closedRange(0, 1), "",
+          "region area / bounding-box area at most (a warm rectangle is not a person)", "at least thermal_min_fill");
+}
+
+void addLidarRows(ParameterTable<DetectionParameters>& t) {
+  auto ground = t.group<LidarGroundConfig>([](DetectionParameters& p) -> LidarGroundConfig& { return p.lidar.ground; });
+  auto person = t.group<LidarPersonConfig>([](DetectionParameters& p) -> LidarPersonConfig& { return p.lidar.person; });
+  t.section("LiDAR person detection: ground (detectors; issue #7)");
+  ground.real("lidar_max_tilt_deg", &LidarGroundConfig::max_tilt_deg, closedRange(0, 60), "deg",
+              "largest mount tilt the levelling plane may take out");
+  ground.real("lidar_level_radius_m", &LidarGroundConfig::level_radius_m, aboveRange(1, 200), "m",
+              "the levelling plane is fitted to the lowest points within this horizontal range");
+  ground.integer("lidar_ground_sectors", &LidarGroundConfig::sectors, {4, 3600}, "",
+                 "azimuth sectors of the local ground (each followed outward in range bins)");
+  ground.real("lidar_ground_bin_m", &LidarGroundConfig::bin_m, closedRange(0.1, 20), "m", "range bin length");
+  ground.real("lidar_ground_max_slope_deg", &LidarGroundConfig::max_slope_deg, closedRange(0, 45), "deg",
+              "steepest ground slope followed from bin to bin");
+  ground.real("lidar_ground_max_step_m", &LidarGroundConfig::max_step_m, closedRange(0, 2), "m",
+              "height step accepted between neighbouring ground bins on top of the slope");
+  ground.real("lidar_ground_tolerance_m", &LidarGroundConfig::tolerance_m, closedRange(0, 2), "m",
+              "points up to this height above the local ground are ground");
+  ground.real("lidar_ground_object_spread_m", &LidarGroundConfig::object_spread_m, aboveRange(0, 10), "m",
+              "a bin whose points span more than this in height holds an object: its lowest point anchors the "
+              "ground only within lidar_ground_tolerance_m of the predicted ground");
+  t.section("LiDAR person detection: objects and the person test (detectors; issue #7)");
+  person.real("lidar_min_range_m", &LidarPersonConfig::min_range_m, closedRange(0, 1000), "m",
+              "nearest person (horizontal distance of its centre)", "below lidar_max_range_m");
+  person.real("lidar_max_range_m", &LidarPersonConfig::max_range_m, aboveRange(0, 1000), "m",
+              "farthest person (horizontal distance of its centre)");
+  person.real("lidar_max_object_height_m", &LidarPersonConfig::max_object_height_m, aboveRange(0, 100), "m",
+              "points higher above the local ground are ignored (canopies, roofs)");
+  person.real("lidar_cluster_cell_m", &LidarPersonConfig::cluster_cell_m, closedRange(0.02, 2), "m",
+              "2-D grid cell joining above-ground points into objects");
+  person.real("lidar_max_split_extent_m", &LidarPersonConfig::max_split_extent_m, closedRange(0, 100), "m",
+              "objects too big for one person but at most this wide and deep are searched for people close together");
+  person.real("lidar_split_tolerance_m", &LidarPersonConfig::split_tolerance_m, closedRange(0.01, 1), "m",
+              "horizontal gap that separates people in such an object (PCL Euclidean clustering)");
+  person.real("lidar_head_dip_m", &LidarPersonConfig::head_dip_m, closedRange(0.01, 2), "m",
+              "people touching side by side are split where the height profile across the line of sight dips "
+              "this far below both heads");
+  person.real("lidar_min_height_m", &LidarPersonConfig::min_height_m, closedRange(0, 10), "m",
+              "lowest top of a person above the local ground", "below lidar_max_height_m");
+  person.real("lidar_max_height_m", &LidarPersonConfig::max_height_m, aboveRange(0, 10), "m",
+              "highest top of a person above the local ground");
+  person.real("lidar_max_bottom_m", &LidarPersonConfig::max_bottom_m, closedRange(0, 10), "m",
+              "a person's lowest point is at most this high (legs reach the ground)");
+  person.real("lidar_min_width_m", &LidarPersonConfig::min_width_m, closedRange(0, 20), "m",
+              "narrowest person across the line of sight", "below lidar_max_width_m");
+  person.real("lidar_max_width_m", &LidarPersonConfig::max_width_m, aboveRange(0, 20), "m",
+              "widest person across the line of sight");
+  person.real("lidar_max_depth_m", &LidarPersonConfig::max_depth_m, aboveRange(0, 20), "m",
+              "deepest person along the line of sight");
+  person.real("lidar_min_height_to_width", &LidarPersonConfig::min_height_to_width, closedRange(0, 100), "",
+              "a person's height / width at least (a bush or a vehicle is squat)");
+  person.real("lidar_post_max_width_m", &LidarPersonConfig::post_max_width_m, closedRange(0, 20), "m",
+              "an object at most this wide whose legs zone is as wide as its torso zone is a post");
+  person.real("lidar_post_leg_to_torso_ratio", &LidarPersonConfig::post_leg_to_torso_ratio, aboveRange(0, 1), "",
+              "'as wide': width of the zone at 20-45 % of the height over the zone at 50-85 % within [r, 1/r]");
+  person.integer("lidar_min_points", &LidarPersonConfig::min_points, {1, 1000000}, "",
+                 "fewest points on a person at any range");
+  person.real("lidar_min_points_at_10m", &LidarPersonConfig::min_points_at_10m, closedRange(0, 1e6), "",
+              "fewest points on a person at 10 m, scaled with (10 m / range)^2");
+}
+
+ParameterTable<DetectionParameters> makeDetectionParameterTable() {
+  ParameterTable<DetectionParameters> t;
+  addThermalRows(t);
+  addLidarRows(t);
+  return t;
+}
+
+}  // namespace
+
+const ParameterTable<DetectionParameters>& detectionParameterTable() {
+  static const ParameterTable<DetectionParameters> table = makeDetectionParameterTable();
+  return table;
+}
+
+DetectionParameters loadDetectionParameters(const ParameterSource& source) {
+  DetectionParameters p;
+  detectionParameterTable().load(source, p);
+  p.thermal.validate();  // the rules across keys (the per-key ranges are the rows')
+  p.lidar.validate();
+  return p;
+}
+
+std::vector<std::pair<std::string, std::string>> describeDetectionParameters(const DetectionParameters& p) {
+  return detectionParameterTable().describe(p);
+}
+
+}  // namespace thermal_lidar_calibration

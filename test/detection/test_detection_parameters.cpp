@@ -1,0 +1,73 @@
+// The detectors' flat parameter keys: a partial YAML file overrides only what it names, bad
+// values are refused with the key, the value and the allowed range, and the rules across keys
+// hold after loading.
+
+#include "thermal_lidar_calibration/app/detection_parameters.hpp"
+#include "thermal_lidar_calibration/app/parameter_source.hpp"
+
+#include "../support/test_files.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <set>
+
+namespace thermal_lidar_calibration {
+namespace {
+
+using test_support::errorOf;
+
+class DetectionParameterFile : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = test_support::tempDir("tlc_detection_params_"); }
+  void TearDown() override { std::system(("rm -rf '" + dir_ + "'").c_str()); }
+  DetectionParameters load(const std::string& yaml) {
+    const std::string path = dir_ + "/params.yaml";
+    std::ofstream(path) << yaml;
+    return loadDetectionParameters(*makeYamlParameterSource(path));
+  }
+  std::string dir_;
+};
+
+TEST_F(DetectionParameterFile, PartialFileOverridesOnlyWhatItNames) {
+  const DetectionParameters p = load("kelvin_per_count: 0.01\nlidar_max_range_m: 25\nthermal_scale: relative\n"
+                                     "population_size: 300   # a calibration key: not ours, ignored\n");
+  EXPECT_DOUBLE_EQ(p.thermal.kelvin_per_count, 0.01);
+  EXPECT_EQ(p.thermal.scale, detection::ThermalScale::kRelative);
+  EXPECT_DOUBLE_EQ(p.lidar.person.max_range_m, 25.0);
+  const DetectionParameters defaults;
+  EXPECT_DOUBLE_EQ(p.thermal.body_min_k, defaults.thermal.body_min_k);
+  EXPECT_EQ(p.lidar.ground.sectors, defaults.lidar.ground.sectors);
+  EXPECT_DOUBLE_EQ(load("").lidar.person.min_height_m, defaults.lidar.person.min_height_m);
+}
+
+TEST_F(DetectionParameterFile, BadValuesNameKeyValueAndRange) {
+  EXPECT_EQ(errorOf([&] { load("thermal_min_area_px: 0\n"); }),
+            "parameter 'thermal_min_area_px' = 0: must be an integer in [1, 10000000]");
+  EXPECT_EQ(errorOf([&] { load("lidar_ground_sectors: 12.5\n"); }),
+            "parameter 'lidar_ground_sectors' = 12.5: must be an integer in [4, 3600]");
+  EXPECT_NE(errorOf([&] { load("kelvin_per_count: -0.04\n"); }).find("parameter 'kelvin_per_count' = -0.04"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { load("thermal_scale: kelvin\n"); }).find("must be 'auto' or 'relative'"), std::string::npos);
+  // Each value in its own range, but not with each other.
+  EXPECT_EQ(errorOf([&] { load("lidar_min_height_m: 2.5\n"); }),
+            "parameters 'lidar_min_height_m' = 2.5 and 'lidar_max_height_m' = 2.2: lidar_min_height_m must be "
+            "below lidar_max_height_m");
+  EXPECT_NE(errorOf([&] { load("thermal_min_fill: 0.99\n"); }).find("thermal_min_fill must not exceed thermal_max_fill"),
+            std::string::npos);
+}
+
+TEST(DetectionParameterTable, EveryKeyOnceAndDescribedWithItsDefault) {
+  const auto keys = detectionParameterTable().keys();
+  std::set<std::string> unique(keys.begin(), keys.end());
+  EXPECT_EQ(unique.size(), keys.size());
+  EXPECT_TRUE(unique.count("kelvin_per_count"));
+  EXPECT_TRUE(unique.count("kelvin_offset"));
+  EXPECT_TRUE(unique.count("lidar_min_points_at_10m"));
+  const auto described = describeDetectionParameters(DetectionParameters{});
+  ASSERT_EQ(described.size(), keys.size());
+  EXPECT_EQ(described.front(), (std::pair<std::string, std::string>{"kelvin_per_count", "0.04"}));
+}
+
+}  // namespace
+}  // namespace thermal_lidar_calibration
