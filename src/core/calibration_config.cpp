@@ -1,26 +1,12 @@
 #include "thermal_lidar_calibration/core/calibration_config.hpp"
 
-#include <cmath>
-#include <sstream>
+#include "parameter_range.hpp"
+
 #include <stdexcept>
 #include <string>
 
 namespace thermal_lidar_calibration {
-namespace {
-
-template <typename T>
-void requireRange(const char* key, T value, T lo, T hi, bool lo_open = false) {
-  const bool ok = std::isfinite(static_cast<double>(value)) &&
-                  (lo_open ? value > lo : value >= lo) && value <= hi;
-  if (!ok) {
-    std::ostringstream s;
-    s << "parameter '" << key << "' = " << value << ": must be in " << (lo_open ? "(" : "[")
-      << lo << ", " << hi << "]";
-    throw std::invalid_argument(s.str());
-  }
-}
-
-}  // namespace
+using detail::requireRange;
 
 void LossConfig::validate() const {
   requireRange("behind_camera_penalty_c1", behind_camera_penalty_c1, 0.0, 1e6, true);

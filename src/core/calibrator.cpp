@@ -1,6 +1,7 @@
 #include "thermal_lidar_calibration/core/calibrator.hpp"
 
 #include "thermal_lidar_calibration/core/evolutionary_optimizer.hpp"
+#include "thermal_lidar_calibration/core/inlier_selection.hpp"
 #include "thermal_lidar_calibration/core/local_refinement.hpp"
 #include "thermal_lidar_calibration/core/outlier_rejection.hpp"
 
@@ -11,43 +12,6 @@
 #include <stdexcept>
 
 namespace thermal_lidar_calibration {
-namespace {
-
-// Pairs the refinement may use: all, or, with exclude_truncated, those whose people do not
-// touch the image border, as long as that leaves at least half of them.
-std::vector<std::size_t> refinementCandidates(const LossEvaluator& loss, bool exclude_truncated) {
-  const std::size_t n = loss.pairCount();
-  std::vector<std::size_t> all, whole;
-  for (std::size_t i = 0; i < n; ++i) {
-    all.push_back(i);
-    if (!loss.maskTouchesImageBorder(i)) whole.push_back(i);
-  }
-  return exclude_truncated && whole.size() * 2 >= n ? whole : all;
-}
-
-// Candidates whose Eq. (1) loss is within the threshold; if fewer than half pass (the estimate
-// is still far off), the better half, so the next refinement has enough pairs to move.
-std::vector<std::size_t> selectInliers(const LossEvaluator& loss, const Extrinsic& estimate,
-                                       double threshold_px,
-                                       const std::vector<std::size_t>& candidates) {
-  const std::size_t n = candidates.size();
-  std::vector<std::pair<double, std::size_t>> scored;
-  for (std::size_t i : candidates) scored.emplace_back(loss.pairLoss(i, estimate), i);
-  std::vector<std::size_t> inliers;
-  for (const auto& [value, i] : scored) {
-    if (value <= threshold_px) inliers.push_back(i);
-  }
-  if (inliers.size() * 2 < n) {
-    std::stable_sort(scored.begin(), scored.end(),
-                     [](const auto& a, const auto& b) { return a.first < b.first; });
-    inliers.clear();
-    for (std::size_t k = 0; k < (n + 1) / 2; ++k) inliers.push_back(scored[k].second);
-    std::sort(inliers.begin(), inliers.end());
-  }
-  return inliers;
-}
-
-}  // namespace
 
 CalibrationResult calibrate(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
                             const CalibrationConfig& config, const ProgressCallback& progress) {
@@ -63,8 +27,12 @@ CalibrationResult calibrate(const CameraModel& camera, const std::vector<Calibra
   result.pairs_collected = pairs.size();
 
   std::uint64_t evaluations_before_stage = 0;
+  // history_stage: the stage's name in the history when it differs from the progress one.
   auto report = [&](const std::string& stage, int generation, int total, double best,
-                    const Extrinsic& e, std::uint64_t stage_evaluations) {
+                    const Extrinsic& e, std::uint64_t stage_evaluations,
+                    const std::string& history_stage = {}) {
+    result.history.push_back({history_stage.empty() ? stage : history_stage, generation, best,
+                              evaluations_before_stage + stage_evaluations});
     if (!progress) return true;
     Progress p;
     p.stage = stage;
@@ -130,10 +98,13 @@ CalibrationResult calibrate(const CameraModel& camera, const std::vector<Calibra
     constexpr int kMaxInlierRounds = 5;
     for (int round = 1; round <= kMaxInlierRounds; ++round) {
       evaluations_before_stage = result.evaluations;
+      const std::string round_name = "refine " + std::to_string(round);
+      result.history.push_back({round_name, 0, bilinear.loss(result.extrinsic, used),
+                                evaluations_before_stage});
       const RefineOutcome refined = refinement.run(
           result.extrinsic, used,
           [&](int iteration, double loss, const Extrinsic& e, std::uint64_t evals) {
-            return report("refine", iteration, 0, loss, e, evals);
+            return report("refine", iteration, 0, loss, e, evals, round_name);
           });
       result.extrinsic = refined.best;
       result.evaluations += refined.evaluations;

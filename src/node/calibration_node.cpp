@@ -91,13 +91,15 @@ void CalibrationNode::createBuilder(const CameraModel& camera, const std::string
 }
 
 void CalibrationNode::onTimer(const ros::WallTimerEvent& /*event*/) {
-  if (auto outcome = worker_.takeOutcome()) handleOutcome(std::move(*outcome));
-  if (result_ && !result_published_ &&
-      (ros::WallTime::now() - start_time_).toSec() >= params_.tf_check_wait_s) {
-    publishResult();
-  }
-  logProgress(false);
-  publishStatus();
+  guard_.run("the status timer", [&] {
+    if (auto outcome = worker_.takeOutcome()) handleOutcome(std::move(*outcome));
+    if (result_ && !result_published_ &&
+        (ros::WallTime::now() - start_time_).toSec() >= params_.tf_check_wait_s) {
+      publishResult();
+    }
+    logProgress(false);
+    publishStatus();
+  });
 }
 
 }  // namespace ros_io

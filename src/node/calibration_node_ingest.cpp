@@ -45,29 +45,50 @@ void CalibrationNode::resumeDataset() {
 
 void CalibrationNode::onCameraInfo(const sensor_msgs::CameraInfo::ConstPtr& msg) {
   if (builder_) return;  // intrinsics are cached from the first valid message
-  try {
-    const CameraModel camera = cameraModelFromMsg(*msg);
-    camera_info_msg_ = *msg;
-    createBuilder(camera, camera_info_topic_);
-    camera_info_sub_.shutdown();
-  } catch (const std::invalid_argument& e) {
-    ROS_WARN_THROTTLE(5.0, "%s: %s", camera_info_topic_.c_str(), e.what());
-  }
+  guard_.run(camera_info_topic_, [&] {
+    try {
+      const CameraModel camera = cameraModelFromMsg(*msg);
+      camera_info_msg_ = *msg;
+      createBuilder(camera, camera_info_topic_);
+      camera_info_sub_.shutdown();
+    } catch (const std::invalid_argument& e) {
+      ROS_WARN_THROTTLE(5.0, "%s: %s", camera_info_topic_.c_str(), e.what());
+    }
+  });
 }
 
+// Input callbacks: the synchronizer refuses stamps ApproximateTime cannot handle (named in a
+// throttled warning); anything else that throws is caught by the guard, never ends the node.
 void CalibrationNode::onImage(const sensor_msgs::Image::ConstPtr& msg) {
-  synchronizer_->addImage(msg);
-  overlay_->onImage(msg);
+  guard_.run(image_topic_, [&] {
+    reportSyncFault(image_topic_, synchronizer_->addImage(msg));
+    overlay_->onImage(msg);
+  });
 }
 
 void CalibrationNode::onMask(const sensor_msgs::Image::ConstPtr& msg) {
-  synchronizer_->addMask(msg);
-  overlay_->onMask(msg);
+  guard_.run(mask_topic_, [&] {
+    reportSyncFault(mask_topic_, synchronizer_->addMask(msg));
+    overlay_->onMask(msg);
+  });
 }
 
 void CalibrationNode::onClusters(const sensor_msgs::PointCloud2::ConstPtr& msg) {
-  synchronizer_->addClusters(msg);
-  overlay_->onClusters(msg);
+  guard_.run(clusters_topic_, [&] {
+    reportSyncFault(clusters_topic_, synchronizer_->addClusters(msg));
+    overlay_->onClusters(msg);
+  });
+}
+
+void CalibrationNode::reportSyncFault(const std::string& topic,
+                                      const FrameSynchronizer::AddOutcome& outcome) {
+  if (outcome.fault.empty()) return;
+  if (fault_throttle_.shouldReport("stamp " + topic)) {
+    ROS_WARN("%s: %s (%llu messages refused for their stamps so far; repeats shown at most every "
+             "%.0f s)",
+             topic.c_str(), outcome.fault.c_str(),
+             static_cast<unsigned long long>(synchronizer_->droppedStamps()), kFaultLogPeriodS);
+  }
 }
 
 void CalibrationNode::onFrame(const sensor_msgs::Image::ConstPtr& image,

@@ -6,33 +6,19 @@
 
 #include <cv_bridge/cv_bridge.h>
 #include <ros/console.h>
-#include <sensor_msgs/point_cloud2_iterator.h>
 
-#include <cmath>
+#include <algorithm>
 #include <stdexcept>
 
 namespace thermal_lidar_calibration {
 namespace ros_io {
-namespace {
-
-bool hasXyz(const sensor_msgs::PointCloud2& cloud) {
-  int found = 0;
-  for (const auto& f : cloud.fields) {
-    if ((f.name == "x" || f.name == "y" || f.name == "z") &&
-        f.datatype == sensor_msgs::PointField::FLOAT32) {
-      ++found;
-    }
-  }
-  return found == 3;
-}
-
-}  // namespace
 
 OverlayPublisher::OverlayPublisher(ros::NodeHandle& private_nh, int max_points,
                                    std::string clusters_topic)
     : it_(private_nh), max_points_(max_points), clusters_topic_(std::move(clusters_topic)) {
   publisher_ = it_.advertise("overlay", 1);
   cloud_subscriber_ = private_nh.subscribe("overlay_cloud", 1, &OverlayPublisher::onCloud, this);
+  cloud_topic_ = cloud_subscriber_.getTopic();
 }
 
 void OverlayPublisher::setCamera(const CameraModel& camera) {
@@ -84,21 +70,12 @@ void OverlayPublisher::decodeCloud() {
   if (cloud_decoded_) return;
   cloud_decoded_ = true;
   cloud_points_.clear();
-  if (!hasXyz(*cloud_msg_)) {
-    ROS_WARN_THROTTLE(10.0, "~overlay_cloud: cloud has no float32 x, y, z fields; ignored");
-    return;
-  }
-  const std::size_t n = static_cast<std::size_t>(cloud_msg_->width) * cloud_msg_->height;
-  const std::size_t stride =
-      std::max<std::size_t>(1, n / static_cast<std::size_t>(std::max(1, max_points_)));
-  cloud_points_.reserve(n / stride + 1);
-  sensor_msgs::PointCloud2ConstIterator<float> x(*cloud_msg_, "x"), y(*cloud_msg_, "y"),
-      z(*cloud_msg_, "z");
-  for (std::size_t i = 0; i < n; ++i, ++x, ++y, ++z) {
-    if (i % stride != 0) continue;
-    if (std::isfinite(*x) && std::isfinite(*y) && std::isfinite(*z)) {
-      cloud_points_.emplace_back(*x, *y, *z);
-    }
+  try {
+    // The ingest path's cloud check, then at most ~max_points_ points read.
+    cloud_points_ = decodeCloudPoints(*cloud_msg_, cloud_topic_,
+                                      static_cast<std::size_t>(std::max(1, max_points_)));
+  } catch (const std::invalid_argument& e) {
+    ROS_WARN_THROTTLE(10.0, "%s; the overlay is drawn without it", e.what());
   }
 }
 

@@ -179,6 +179,15 @@ BagIngestStats ingestBag(rosbag::Bag& bag, const BagTopics& topics, const CorePa
   };
   FrameSynchronizer sync(params.sync_queue_size, params.sync_slop_s, on_frame);
 
+  // Messages whose stamps ApproximateTime cannot handle are refused by the synchronizer: say so
+  // for the first few.
+  std::uint64_t stamp_faults = 0;
+  const auto note = [&](const std::string& topic, const FrameSynchronizer::AddOutcome& outcome) {
+    if (outcome.fault.empty() || ++stamp_faults > kMaxDistinctWarnings || !callbacks.warn) return;
+    callbacks.warn(topic + ": " + outcome.fault +
+                   (stamp_faults == kMaxDistinctWarnings ? " (further ones not shown)" : ""));
+  };
+
   std::vector<std::string> wanted = {topics.image, topics.mask, topics.clusters};
   try {
     rosbag::View view(bag, rosbag::TopicQuery(wanted));
@@ -188,11 +197,11 @@ BagIngestStats ingestBag(rosbag::Bag& bag, const BagTopics& topics, const CorePa
       ++stats.messages_read;
       try {
         if (m.getTopic() == topics.clusters) {
-          sync.addClusters(m.instantiate<sensor_msgs::PointCloud2>());
+          note(m.getTopic(), sync.addClusters(m.instantiate<sensor_msgs::PointCloud2>()));
         } else if (m.getTopic() == topics.image) {
-          sync.addImage(m.instantiate<sensor_msgs::Image>());
+          note(m.getTopic(), sync.addImage(m.instantiate<sensor_msgs::Image>()));
         } else {
-          sync.addMask(m.instantiate<sensor_msgs::Image>());
+          note(m.getTopic(), sync.addMask(m.instantiate<sensor_msgs::Image>()));
         }
       } catch (const ros::Exception& e) {
         // One message could not be deserialised (truncated record): skip it.

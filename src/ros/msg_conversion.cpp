@@ -11,12 +11,17 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
 namespace thermal_lidar_calibration {
 namespace ros_io {
 namespace {
+
+// No thermal camera comes near this; a larger declared size is a corrupt header, refused before
+// cv::Mat's int dimensions or an allocation see it.
+constexpr std::uint32_t kMaxImageSide = 1u << 15;
 
 std::string topicPrefix(const std::string& topic) {
   return topic.empty() ? std::string() : topic + ": ";
@@ -84,6 +89,13 @@ const sensor_msgs::PointField* findField(const sensor_msgs::PointCloud2& msg,
   return nullptr;
 }
 
+// a * b, or nullopt when it does not fit in size_t: declared sizes come from the wire.
+std::optional<std::size_t> checkedMul(std::size_t a, std::size_t b) {
+  std::size_t out = 0;
+  if (__builtin_mul_overflow(a, b, &out)) return std::nullopt;
+  return out;
+}
+
 void checkFieldFits(const sensor_msgs::PointCloud2& msg, const sensor_msgs::PointField& f,
                     const std::string& topic) {
   const std::size_t size = datatypeSize(f.datatype);
@@ -96,6 +108,79 @@ void checkFieldFits(const sensor_msgs::PointCloud2& msg, const sensor_msgs::Poin
                     ", " + datatypeName(f.datatype) + ") lies outside point_step " +
                     std::to_string(msg.point_step) + "; fix the publisher's field layout");
   }
+}
+
+// A PointCloud2 whose layout was checked: x, y, z (float32 or float64) and, when asked for,
+// `label`, every field inside point_step, and row_step and data large enough for
+// width x height points, every size computed without overflow. The one check every cloud
+// decoder (clusters of the ingest path, ~overlay_cloud) goes through.
+struct CloudLayout {
+  const sensor_msgs::PointField* axes[3] = {nullptr, nullptr, nullptr};
+  const sensor_msgs::PointField* label = nullptr;
+  std::size_t points = 0;  // width * height
+};
+
+CloudLayout checkCloudLayout(const sensor_msgs::PointCloud2& msg, const std::string& topic,
+                             bool need_label) {
+  if (msg.is_bigendian) {
+    fail(topic, "PointCloud2 is big-endian; publish little-endian data (is_bigendian = false)");
+  }
+  CloudLayout layout;
+  const char* axis_names[3] = {"x", "y", "z"};
+  for (int k = 0; k < 3; ++k) {
+    layout.axes[k] = findField(msg, axis_names[k]);
+    if (!layout.axes[k]) {
+      fail(topic, std::string("PointCloud2 has no '") + axis_names[k] + "' field (fields: " +
+                      fieldList(msg) + "); publish float32 x, y, z");
+    }
+    if (layout.axes[k]->datatype != sensor_msgs::PointField::FLOAT32 &&
+        layout.axes[k]->datatype != sensor_msgs::PointField::FLOAT64) {
+      fail(topic, std::string("PointCloud2 field '") + axis_names[k] + "' is " +
+                      datatypeName(layout.axes[k]->datatype) + "; publish float32 x, y, z");
+    }
+    checkFieldFits(msg, *layout.axes[k], topic);
+  }
+  if (need_label) {
+    layout.label = findField(msg, "label");
+    if (!layout.label) {
+      fail(topic, "PointCloud2 has no 'label' field (fields: " + fieldList(msg) +
+                      "); publish one integer label per person");
+    }
+    if (layout.label->datatype == sensor_msgs::PointField::FLOAT64 ||
+        datatypeSize(layout.label->datatype) == 0) {
+      fail(topic, std::string("PointCloud2 field 'label' is ") +
+                      datatypeName(layout.label->datatype) +
+                      "; publish it as an integer (int8..int32, uint8..uint32) or float32");
+    }
+    checkFieldFits(msg, *layout.label, topic);
+  }
+  const auto points = checkedMul(msg.width, msg.height);
+  const auto row_bytes = checkedMul(msg.width, msg.point_step);
+  if (!points || !row_bytes) {
+    fail(topic, "PointCloud2 declares " + std::to_string(msg.width) + " x " +
+                    std::to_string(msg.height) + " points of " + std::to_string(msg.point_step) +
+                    " bytes, more than memory can hold; fix the publisher's layout");
+  }
+  layout.points = *points;
+  if (layout.points == 0) return layout;
+  if (*row_bytes > msg.row_step) {
+    fail(topic, "PointCloud2 row_step " + std::to_string(msg.row_step) +
+                    " is smaller than width * point_step = " + std::to_string(*row_bytes) +
+                    "; fix the publisher's layout");
+  }
+  const auto needed = checkedMul(msg.row_step, msg.height);
+  if (!needed || msg.data.size() < *needed) {
+    fail(topic, "PointCloud2 data has " + std::to_string(msg.data.size()) +
+                    " bytes, expected row_step * height = " + std::to_string(msg.row_step) +
+                    " * " + std::to_string(msg.height) + "; the message is truncated");
+  }
+  return layout;
+}
+
+// The bytes of point `index` (row-major; rows may be padded to row_step). The layout is checked.
+const std::uint8_t* pointAt(const sensor_msgs::PointCloud2& msg, std::size_t index) {
+  const std::size_t row = index / msg.width, col = index % msg.width;
+  return msg.data.data() + row * msg.row_step + col * msg.point_step;
 }
 
 }  // namespace
@@ -121,15 +206,21 @@ cv::Mat decodeMonoImage(const sensor_msgs::Image& msg, const std::string& topic)
   if (bytes_per_pixel == 2 && msg.is_bigendian) {
     fail(topic, "16-bit image is big-endian; publish little-endian data (is_bigendian = 0)");
   }
+  if (msg.width > kMaxImageSide || msg.height > kMaxImageSide) {
+    fail(topic, "image is " + std::to_string(msg.width) + "x" + std::to_string(msg.height) +
+                    ", larger than " + std::to_string(kMaxImageSide) +
+                    " pixels a side; the header is corrupt");
+  }
   const std::size_t row_bytes = static_cast<std::size_t>(msg.width) * bytes_per_pixel;
   if (msg.step < row_bytes) {
     fail(topic, "image step " + std::to_string(msg.step) + " is smaller than width * " +
                     std::to_string(bytes_per_pixel) + " = " + std::to_string(row_bytes) +
                     "; fix the publisher's step");
   }
-  const std::size_t needed =
-      static_cast<std::size_t>(msg.step) * (msg.height - 1) + row_bytes;
-  if (msg.data.size() < needed) {
+  // step * (height - 1) + row_bytes: both factors are below 2^32, but say so in the code.
+  const auto rows_before_last = checkedMul(msg.step, msg.height - 1);
+  if (!rows_before_last || msg.data.size() < *rows_before_last ||
+      msg.data.size() - *rows_before_last < row_bytes) {
     fail(topic, "image data has " + std::to_string(msg.data.size()) + " bytes, expected " +
                     std::to_string(static_cast<std::size_t>(msg.step) * msg.height) +
                     " (step * height); the message is truncated");
@@ -142,78 +233,52 @@ cv::Mat decodeMonoImage(const sensor_msgs::Image& msg, const std::string& topic)
 }
 
 DecodedClusters decodeClusters(const sensor_msgs::PointCloud2& msg, const std::string& topic) {
-  if (msg.is_bigendian) {
-    fail(topic, "PointCloud2 is big-endian; publish little-endian data (is_bigendian = false)");
-  }
-  const char* axis_names[3] = {"x", "y", "z"};
-  const sensor_msgs::PointField* axes[3];
-  for (int k = 0; k < 3; ++k) {
-    axes[k] = findField(msg, axis_names[k]);
-    if (!axes[k]) {
-      fail(topic, std::string("PointCloud2 has no '") + axis_names[k] + "' field (fields: " +
-                      fieldList(msg) + "); publish float32 x, y, z");
-    }
-    if (axes[k]->datatype != sensor_msgs::PointField::FLOAT32 &&
-        axes[k]->datatype != sensor_msgs::PointField::FLOAT64) {
-      fail(topic, std::string("PointCloud2 field '") + axis_names[k] + "' is " +
-                      datatypeName(axes[k]->datatype) + "; publish float32 x, y, z");
-    }
-    checkFieldFits(msg, *axes[k], topic);
-  }
-  const sensor_msgs::PointField* label = findField(msg, "label");
-  if (!label) {
-    fail(topic, "PointCloud2 has no 'label' field (fields: " + fieldList(msg) +
-                    "); publish one integer label per person");
-  }
-  if (label->datatype == sensor_msgs::PointField::FLOAT64 || datatypeSize(label->datatype) == 0) {
-    fail(topic, std::string("PointCloud2 field 'label' is ") + datatypeName(label->datatype) +
-                    "; publish it as an integer (int8..int32, uint8..uint32) or float32");
-  }
-  checkFieldFits(msg, *label, topic);
-
-  const std::size_t points = static_cast<std::size_t>(msg.width) * msg.height;
+  const CloudLayout layout = checkCloudLayout(msg, topic, /*need_label=*/true);
   DecodedClusters out;
-  if (points == 0) return out;
-  if (static_cast<std::size_t>(msg.width) * msg.point_step > msg.row_step) {
-    fail(topic, "PointCloud2 row_step " + std::to_string(msg.row_step) +
-                    " is smaller than width * point_step; fix the publisher's layout");
-  }
-  const std::size_t needed = static_cast<std::size_t>(msg.row_step) * msg.height;
-  if (msg.data.size() < needed) {
-    fail(topic, "PointCloud2 data has " + std::to_string(msg.data.size()) +
-                    " bytes, expected row_step * height = " + std::to_string(needed) +
-                    "; the message is truncated");
-  }
-  out.points.reserve(points);
-  out.labels.reserve(points);
-  for (std::uint32_t row = 0; row < msg.height; ++row) {
-    const std::uint8_t* row_ptr = msg.data.data() + static_cast<std::size_t>(row) * msg.row_step;
-    for (std::uint32_t col = 0; col < msg.width; ++col) {
-      const std::uint8_t* p = row_ptr + static_cast<std::size_t>(col) * msg.point_step;
-      const double x = readScalar(p + axes[0]->offset, axes[0]->datatype);
-      const double y = readScalar(p + axes[1]->offset, axes[1]->datatype);
-      const double z = readScalar(p + axes[2]->offset, axes[2]->datatype);
-      const double l = readScalar(p + label->offset, label->datatype);
-      if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) || !std::isfinite(l)) {
-        ++out.nonfinite_dropped;
-        continue;
-      }
-      const float xf = static_cast<float>(x), yf = static_cast<float>(y),
-                  zf = static_cast<float>(z);
-      if (!std::isfinite(xf) || !std::isfinite(yf) || !std::isfinite(zf)) {
-        ++out.nonfinite_dropped;  // float64 beyond the float32 range
-        continue;
-      }
-      if (l != std::round(l) || l < std::numeric_limits<std::int32_t>::min() ||
-          l > std::numeric_limits<std::int32_t>::max()) {
-        std::ostringstream value;
-        value << l;
-        fail(topic, "PointCloud2 label " + value.str() +
-                        " is not an int32 integer; publish one integer label per person");
-      }
-      out.points.emplace_back(xf, yf, zf);
-      out.labels.push_back(static_cast<std::int32_t>(l));
+  out.points.reserve(layout.points);  // bounded: the data holds every point (checked)
+  out.labels.reserve(layout.points);
+  for (std::size_t i = 0; i < layout.points; ++i) {
+    const std::uint8_t* p = pointAt(msg, i);
+    const double x = readScalar(p + layout.axes[0]->offset, layout.axes[0]->datatype);
+    const double y = readScalar(p + layout.axes[1]->offset, layout.axes[1]->datatype);
+    const double z = readScalar(p + layout.axes[2]->offset, layout.axes[2]->datatype);
+    const double l = readScalar(p + layout.label->offset, layout.label->datatype);
+    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) || !std::isfinite(l)) {
+      ++out.nonfinite_dropped;
+      continue;
     }
+    const float xf = static_cast<float>(x), yf = static_cast<float>(y), zf = static_cast<float>(z);
+    if (!std::isfinite(xf) || !std::isfinite(yf) || !std::isfinite(zf)) {
+      ++out.nonfinite_dropped;  // float64 beyond the float32 range
+      continue;
+    }
+    if (l != std::round(l) || l < std::numeric_limits<std::int32_t>::min() ||
+        l > std::numeric_limits<std::int32_t>::max()) {
+      std::ostringstream value;
+      value << l;
+      fail(topic, "PointCloud2 label " + value.str() +
+                      " is not an int32 integer; publish one integer label per person");
+    }
+    out.points.emplace_back(xf, yf, zf);
+    out.labels.push_back(static_cast<std::int32_t>(l));
+  }
+  return out;
+}
+
+std::vector<Eigen::Vector3f> decodeCloudPoints(const sensor_msgs::PointCloud2& msg,
+                                               const std::string& topic, std::size_t max_points) {
+  const CloudLayout layout = checkCloudLayout(msg, topic, /*need_label=*/false);
+  std::vector<Eigen::Vector3f> out;
+  if (layout.points == 0 || max_points == 0) return out;
+  // Every stride-th point: the work is bounded by max_points, not by the cloud's size.
+  const std::size_t stride = std::max<std::size_t>(1, layout.points / max_points);
+  out.reserve(std::min(layout.points, max_points + 1));
+  for (std::size_t i = 0; i < layout.points; i += stride) {
+    const std::uint8_t* p = pointAt(msg, i);
+    const float x = static_cast<float>(readScalar(p + layout.axes[0]->offset, layout.axes[0]->datatype));
+    const float y = static_cast<float>(readScalar(p + layout.axes[1]->offset, layout.axes[1]->datatype));
+    const float z = static_cast<float>(readScalar(p + layout.axes[2]->offset, layout.axes[2]->datatype));
+    if (std::isfinite(x) && std::isfinite(y) && std::isfinite(z)) out.emplace_back(x, y, z);
   }
   return out;
 }

@@ -34,6 +34,7 @@ void SceneConfig::validate() const {
   require(min_turn_rad >= 0.0 && max_turn_rad >= min_turn_rad && max_turn_rad <= M_PI, "bad turn angles");
   require(turn_after_group_m >= 0.0, "turn_after_group_m must be >= 0");
   require(clutter_per_group >= 0, "clutter_per_group must be >= 0");
+  require(people_side >= -1 && people_side <= 1, "people_side must be -1, 0 or 1");
 }
 
 BodyPose PersonTrack::poseAt(double t_s) const {
@@ -117,7 +118,8 @@ Scene::Scene(const SceneConfig& config, std::uint64_t seed) : config_(config) {
         const VehiclePose at = poseAtArcLength(along);
         const Eigen::Vector2d tangent(std::cos(at.yaw_rad), std::sin(at.yaw_rad));
         const Eigen::Vector2d normal(-tangent.y(), tangent.x());
-        const double side = unit(rng) < 0.5 ? -1.0 : 1.0;
+        double side = unit(rng) < 0.5 ? -1.0 : 1.0;  // drawn always: the other draws stay the same
+        if (config_.people_side != 0) side = config_.people_side;
         double lateral = uniform(config_.min_lateral_m, config_.max_lateral_m);
         if (walking) {
           person.walk_speed_mps = uniform(0.3, std::max(0.3, config_.max_walk_speed_mps));

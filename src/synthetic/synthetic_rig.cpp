@@ -39,6 +39,20 @@ void SyntheticConfig::validate() const {
   if (detector.min_cluster_points < 1 || detector.min_mask_pixels < 1 || detector.detection_range_m <= 0.0) {
     throw std::invalid_argument("detector: need min_cluster_points >= 1, min_mask_pixels >= 1, range > 0");
   }
+  if (extrinsic_change.enabled()) {
+    const double duration_s = frames / frame_rate_hz;
+    if (!(extrinsic_change.at_s > 0.0 && extrinsic_change.at_s < duration_s)) {
+      throw std::invalid_argument("extrinsic change at " + std::to_string(extrinsic_change.at_s) +
+                                  " s: must be inside the drive, (0, " + std::to_string(duration_s) + ") s");
+    }
+    if (!(extrinsic_change.rotation_deg >= 0.0 && extrinsic_change.rotation_deg <= 45.0 &&
+          extrinsic_change.translation_cm >= 0.0 && extrinsic_change.translation_cm <= 100.0)) {
+      throw std::invalid_argument("extrinsic change: rotation must be in [0, 45] deg, translation in [0, 100] cm");
+    }
+    if (extrinsic_change.rotation_deg == 0.0 && extrinsic_change.translation_cm == 0.0) {
+      throw std::invalid_argument("extrinsic change of 0 deg and 0 cm changes nothing");
+    }
+  }
   rig.camera.validate();
   rig.lidar.validate();
   noise.validate();
@@ -48,12 +62,59 @@ void SyntheticConfig::validate() const {
 SyntheticRig::SyntheticRig(const SyntheticConfig& config) : config_(config) {
   config_.scene.speed_mps = config_.rig.vehicle_speed_mps;
   config_.scene.duration_s = config_.frames / config_.frame_rate_hz;
+  // The camera's left is the vehicle's left: people for an empty left third stand on the right.
+  if (config_.empty_image_region == ImageRegion::kLeft) config_.scene.people_side = -1;
+  if (config_.empty_image_region == ImageRegion::kRight) config_.scene.people_side = 1;
   config_.validate();
   scene_ = std::make_unique<Scene>(config_.scene, config_.seed);
   renderer_ = std::make_unique<ThermalRenderer>(config_.rig.camera, config_.rig.truth, groundZ());
   std::mt19937_64 rng(mixSeed(config_.seed, 7, 0));
   std::uniform_real_distribution<double> grey(185.0, 215.0);
   for (std::size_t i = 0; i < scene_->people().size(); ++i) person_grey_.push_back(grey(rng));
+  drawChange();
+}
+
+void SyntheticRig::drawChange() {
+  const ExtrinsicChangeConfig& c = config_.extrinsic_change;
+  change_ = ExtrinsicChange{};
+  change_.before = change_.after = config_.rig.truth;
+  if (!c.enabled()) return;
+  // Its own stream: the rest of the drive is the same with and without the change.
+  std::mt19937_64 rng(mixSeed(config_.seed, 13, 0));
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  auto randomUnit = [&]() {
+    Eigen::Vector3d v;
+    do {
+      v = Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng));
+    } while (v.norm() < 1e-6);
+    return Eigen::Vector3d(v.normalized());
+  };
+  change_.enabled = true;
+  change_.at_s = c.at_s;
+  change_.at_stamp_s = config_.start_stamp_s + c.at_s;
+  // Frame i is at start + i / rate: the first at or after the change (tolerating rounding).
+  change_.first_frame = static_cast<int>(std::ceil(c.at_s * config_.frame_rate_hz - 1e-9));
+  change_.rotation_deg = c.rotation_deg;
+  change_.translation_cm = c.translation_cm;
+  change_.axis = randomUnit();
+  change_.translation_direction = randomUnit();
+  const Eigen::Matrix3d bump = Eigen::AngleAxisd(c.rotation_deg * M_PI / 180.0, change_.axis).toRotationMatrix();
+  change_.after = Extrinsic::fromRotationMatrix(
+      bump * config_.rig.truth.rotationMatrix(),
+      config_.rig.truth.translation + 0.01 * c.translation_cm * change_.translation_direction);
+  renderer_after_ = std::make_unique<ThermalRenderer>(config_.rig.camera, change_.after, groundZ());
+}
+
+const Extrinsic& SyntheticRig::truthAt(int index) const {
+  return change_.enabled && index >= change_.first_frame ? change_.after : change_.before;
+}
+
+const ThermalRenderer& SyntheticRig::rendererAt(int index) const {
+  return change_.enabled && index >= change_.first_frame ? *renderer_after_ : *renderer_;
+}
+
+ColumnRange SyntheticRig::emptyColumns() const {
+  return regionColumns(config_.empty_image_region, config_.rig.camera.width);
 }
 
 std::vector<WorldObject> SyntheticRig::snapshot(int index) const {
@@ -83,11 +144,66 @@ std::vector<WorldObject> SyntheticRig::snapshot(int index) const {
     obj.grey_level = 72.0 + 7.0 * (item.id % 5);
     objects.push_back(std::move(obj));
   }
+  removePeopleSeenInEmptyRegion(objects, index);
   return objects;
 }
 
 SyntheticFrame SyntheticRig::render(int index) const {
   return renderSnapshot(snapshot(index), index, config_.start_stamp_s + index / config_.frame_rate_hz);
+}
+
+// What the sensors see of a snapshot, before any noise.
+struct SyntheticRig::Observation {
+  std::vector<LidarReturn> returns;
+  cv::Mat owners;  // CV_32SC1: object index per pixel, -1 none
+};
+
+SyntheticRig::Observation SyntheticRig::observe(const std::vector<WorldObject>& objects, int index) const {
+  Observation seen;
+  seen.returns = castLidarScan(config_.rig.lidar, objects, groundZ());
+  seen.owners = rendererAt(index).renderOwners(objects);
+  return seen;
+}
+
+bool SyntheticRig::projectsIntoEmptyRegion(const Eigen::Vector3f& point_lidar, int index, int margin_px) const {
+  const ColumnRange columns = emptyColumns();
+  const Extrinsic& truth = truthAt(index);
+  const Eigen::Vector3d pc = truth.rotationMatrix() * point_lidar.cast<double>() + truth.translation;
+  if (pc.z() <= 0.0) return false;
+  const CameraModel& camera = config_.rig.camera;
+  const Eigen::Vector2d px = camera.project(pc);
+  if (px.y() < -margin_px || px.y() > camera.height - 1 + margin_px) return false;
+  return px.x() >= columns.begin - margin_px - 0.5 && px.x() < columns.end + margin_px - 0.5;
+}
+
+void SyntheticRig::removePeopleSeenInEmptyRegion(std::vector<WorldObject>& objects, int index) const {
+  if (config_.empty_image_region == ImageRegion::kNone) return;
+  // A margin keeps range noise and mask edge noise from carrying a person across the border.
+  constexpr int kMarginPx = 2;
+  const ColumnRange columns = emptyColumns();
+  const ColumnRange wide{columns.begin - kMarginPx, columns.end + kMarginPx};
+  // Removing a person can uncover one behind them: repeat until nobody shows there.
+  for (;;) {
+    const Observation seen = observe(objects, index);
+    std::vector<char> remove(objects.size(), 0);
+    for (int v = 0; v < seen.owners.rows; ++v) {
+      const int* own = seen.owners.ptr<int>(v);
+      for (int u = std::max(0, wide.begin); u < std::min(seen.owners.cols, wide.end); ++u) {
+        if (own[u] >= 0 && objects[static_cast<std::size_t>(own[u])].isPerson()) remove[own[u]] = 1;
+      }
+    }
+    for (const auto& r : seen.returns) {
+      if (r.object < 0 || remove[r.object] || !objects[static_cast<std::size_t>(r.object)].isPerson()) continue;
+      if (projectsIntoEmptyRegion(r.point, index, kMarginPx)) remove[r.object] = 1;
+    }
+    std::vector<WorldObject> kept;
+    for (std::size_t j = 0; j < objects.size(); ++j) {
+      if (!remove[j]) kept.push_back(std::move(objects[j]));
+    }
+    const bool done = kept.size() == objects.size();
+    objects = std::move(kept);
+    if (done) return;
+  }
 }
 
 SyntheticFrame SyntheticRig::renderSnapshot(const std::vector<WorldObject>& objects, int index,
@@ -103,8 +219,10 @@ SyntheticFrame SyntheticRig::renderSnapshot(const std::vector<WorldObject>& obje
   frame.index = index;
   frame.stamp_s = stamp_s;
 
-  // LiDAR scan with range noise along each ray.
-  std::vector<LidarReturn> returns = castLidarScan(config_.rig.lidar, objects, groundZ());
+  // LiDAR scan with range noise along each ray; the camera's nearest object per pixel.
+  Observation seen = observe(objects, index);
+  std::vector<LidarReturn>& returns = seen.returns;
+  const cv::Mat& owners = seen.owners;
   if (noise.range_sigma_m > 0.0) {
     std::normal_distribution<double> gauss(0.0, noise.range_sigma_m);
     for (auto& r : returns) {
@@ -118,8 +236,6 @@ SyntheticFrame SyntheticRig::renderSnapshot(const std::vector<WorldObject>& obje
     if (r.object >= 0) ++hits[static_cast<std::size_t>(r.object)];
   }
 
-  // Camera: nearest object per pixel.
-  const cv::Mat owners = renderer_->renderOwners(objects);
   std::vector<int> pixels(objects.size(), 0);
   for (int v = 0; v < owners.rows; ++v) {
     const int* own = owners.ptr<int>(v);
@@ -147,6 +263,15 @@ SyntheticFrame SyntheticRig::renderSnapshot(const std::vector<WorldObject>& obje
       frame.people.push_back(p);
     } else {
       in_cluster[j] = hits[j] >= det.min_cluster_points && u_cluster < noise.false_cluster_rate;
+    }
+  }
+  if (config_.empty_image_region != ImageRegion::kNone) {
+    // Nobody is reported in the empty region: not even a post mistaken for a person.
+    for (const auto& r : returns) {
+      if (r.object >= 0 && in_cluster[r.object] && !objects[r.object].isPerson() &&
+          projectsIntoEmptyRegion(r.point, index, 0)) {
+        in_cluster[r.object] = 0;
+      }
     }
   }
 
@@ -180,13 +305,17 @@ SyntheticFrame SyntheticRig::renderSnapshot(const std::vector<WorldObject>& obje
   }
   perturbMaskEdges(frame.mask, noise.mask_edge_px, rng_noise);
   if (unit(rng_noise) < noise.false_mask_rate) addFalseMaskBlob(frame.mask, next_id, rng_noise);
+  const ColumnRange empty = emptyColumns();
+  if (empty.end > empty.begin) {  // edge noise and false blobs stay out of the empty region too
+    frame.mask.colRange(empty.begin, empty.end).setTo(0);
+  }
   if (config_.mask_style == MaskStyle::kBinary) frame.mask.setTo(255, frame.mask != 0);
   // Counted as the ingest path counts them: a single-id mask split in two (a person cut by a
   // post) is two people to the consumer, so it is two here too.
   frame.counts = countPeople(frame.mask, frame.cluster_labels);
 
   const double drift = 3.0 * std::sin(0.05 * stamp_s);
-  frame.image = renderer_->renderImage(owners, objects, config_.image_depth, noise.image_noise, drift, rng_image);
+  frame.image = rendererAt(index).renderImage(owners, objects, config_.image_depth, noise.image_noise, drift, rng_image);
 
   if (config_.full_cloud) {
     for (const auto& r : returns) {

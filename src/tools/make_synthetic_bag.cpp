@@ -30,6 +30,22 @@ void printSummary(const syn::SyntheticRig& rig, const std::vector<PeopleCounts>&
               "pairs under the default gate (skip %d): %llu\n",
               c.rig.name.c_str(), static_cast<unsigned long long>(c.seed), c.frames, rig.scene().people().size(),
               gate.max_people, kept(no_skip), gate.skip_frames, kept(gate));
+  const syn::ExtrinsicChange& change = rig.extrinsicChange();
+  if (change.enabled) {
+    const auto split = counts.begin() + std::min<std::ptrdiff_t>(change.first_frame, counts.size());
+    const auto keptIn = [&](std::vector<PeopleCounts> part) {
+      return static_cast<unsigned long long>(syn::gateFrames(part, gate)[GateDecision::kKept]);
+    };
+    std::printf("extrinsic change at %.3f s (stamp %.3f, frame %d): %.3f deg, %.2f cm; pairs under the default "
+                "gate before / after it: %llu / %llu\n",
+                change.at_s, change.at_stamp_s, change.first_frame, change.rotation_deg, change.translation_cm,
+                keptIn({counts.begin(), split}), keptIn({split, counts.end()}));
+  }
+  const syn::ColumnRange empty = rig.emptyColumns();
+  if (empty.end > empty.begin) {
+    std::printf("empty image region %s: columns %d..%d hold no person\n", syn::toString(c.empty_image_region),
+                empty.begin, empty.end - 1);
+  }
 }
 
 }  // namespace

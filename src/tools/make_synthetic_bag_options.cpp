@@ -54,8 +54,21 @@ std::string oneOf(const std::string& flag, const std::string& value, std::initia
   throw UsageError(flag + " must be one of " + list + ", got '" + value + "'");
 }
 
+// "ROT_DEG,TRANS_CM": two non-negative numbers, not both zero.
+void parseExtrinsicChange(const std::string& flag, const std::string& text, MakeSyntheticBagOptions& o) {
+  const std::size_t comma = text.find(',');
+  if (comma == std::string::npos || text.find(',', comma + 1) != std::string::npos) {
+    throw UsageError(flag + " needs ROT_DEG,TRANS_CM (e.g. 0.5,3), got '" + text + "'");
+  }
+  o.extrinsic_change_rotation_deg = parseDouble(flag + " ROT_DEG", text.substr(0, comma), 0.0, 45.0);
+  o.extrinsic_change_translation_cm = parseDouble(flag + " TRANS_CM", text.substr(comma + 1), 0.0, 100.0);
+  if (o.extrinsic_change_rotation_deg == 0.0 && o.extrinsic_change_translation_cm == 0.0) {
+    throw UsageError(flag + " 0,0 changes nothing: give a rotation or a translation");
+  }
+}
+
 // Checks that need every option: conflicts and derived defaults.
-void finish(MakeSyntheticBagOptions& o) {
+void finish(MakeSyntheticBagOptions& o, bool change_given, double frame_rate_hz) {
   if (o.output.empty()) throw UsageError("--output OUT.bag is required (see --help)");
   if (o.lidar_frame.empty() || o.camera_frame.empty() || o.lidar_frame == o.camera_frame) {
     throw UsageError("--lidar-frame and --camera-frame must be non-empty and different");
@@ -64,6 +77,14 @@ void finish(MakeSyntheticBagOptions& o) {
     throw UsageError("--camera-parent must differ from the camera frame");
   }
   if (o.truth.empty()) o.truth = o.output + ".truth.yaml";
+  if ((o.extrinsic_change_at_s >= 0.0) != change_given) {
+    throw UsageError("--extrinsic-change-at S and --extrinsic-change ROT_DEG,TRANS_CM go together");
+  }
+  const double duration_s = o.frames / frame_rate_hz;
+  if (change_given && !(o.extrinsic_change_at_s > 0.0 && o.extrinsic_change_at_s < duration_s)) {
+    throw UsageError("--extrinsic-change-at must be inside the drive, between 0 and " + std::to_string(duration_s) +
+                     " s (the drive's length), got " + std::to_string(o.extrinsic_change_at_s));
+  }
 }
 
 }  // namespace
@@ -97,6 +118,14 @@ std::string makeSyntheticBagUsage() {
       "  --time-jitter-s X        random +-X s offset per topic and frame (default 0)\n"
       "  --lidar-frame F          default velodyne\n"
       "  --camera-frame F         default thermal_optical\n"
+      "  --extrinsic-change-at S  a bump S seconds after the start of the drive (with --extrinsic-change)\n"
+      "  --extrinsic-change ROT_DEG,TRANS_CM\n"
+      "                           the camera turns ROT_DEG about a random axis and shifts TRANS_CM in\n"
+      "                           a random direction (drawn from the seed); the truth file keeps the\n"
+      "                           extrinsic at the start and adds extrinsic_change: {at_stamp, after, ...}\n"
+      "  --empty-image-region R   left | centre | right: nobody is ever seen in that third of the image\n"
+      "                           (people stand on the other side of the path; frames where someone\n"
+      "                           would show there leave them out; no false detections there)\n"
       "  --help                   this text\n"
       "Exit codes: 0 success, 1 failure while writing, 2 bad arguments.\n";
 }
@@ -104,7 +133,7 @@ std::string makeSyntheticBagUsage() {
 MakeSyntheticBagOptions parseMakeSyntheticBagOptions(const std::vector<std::string>& args) {
   MakeSyntheticBagOptions o;
   const double frame_rate_hz = syn::SyntheticConfig{}.frame_rate_hz;
-  bool frames_set = false, duration_set = false;
+  bool frames_set = false, duration_set = false, change_given = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&]() -> const std::string& {
@@ -159,12 +188,19 @@ MakeSyntheticBagOptions parseMakeSyntheticBagOptions(const std::vector<std::stri
       o.lidar_frame = value();
     } else if (a == "--camera-frame") {
       o.camera_frame = value();
+    } else if (a == "--extrinsic-change-at") {
+      o.extrinsic_change_at_s = parseDouble(a, value(), 0.0, 1e6);
+    } else if (a == "--extrinsic-change") {
+      parseExtrinsicChange(a, value(), o);
+      change_given = true;
+    } else if (a == "--empty-image-region") {
+      o.empty_image_region = oneOf(a, value(), {"left", "centre", "right"});
     } else {
       throw UsageError("unknown argument '" + a + "' (see --help)");
     }
   }
   if (frames_set && duration_set) throw UsageError("give either --frames or --duration, not both");
-  finish(o);
+  finish(o, change_given, frame_rate_hz);
   return o;
 }
 
@@ -183,6 +219,10 @@ syn::SyntheticConfig syntheticConfigFrom(const MakeSyntheticBagOptions& o) {
   c.mask_style = o.mask_style == "binary" ? syn::MaskStyle::kBinary : syn::MaskStyle::kIds;
   c.image_depth = o.image_encoding == "mono16" ? syn::ImageDepth::kMono16 : syn::ImageDepth::kMono8;
   c.full_cloud = o.full_cloud;
+  c.extrinsic_change.at_s = o.extrinsic_change_at_s;
+  c.extrinsic_change.rotation_deg = o.extrinsic_change_rotation_deg;
+  c.extrinsic_change.translation_cm = o.extrinsic_change_translation_cm;
+  c.empty_image_region = syn::imageRegionByName(o.empty_image_region);
   return c;
 }
 

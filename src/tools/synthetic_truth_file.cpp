@@ -10,6 +10,28 @@
 namespace thermal_lidar_calibration {
 namespace ros_io {
 
+namespace {
+
+// The top-level extrinsic keys stay the one in force at the start (what existing readers use);
+// this block says when it changed and to what.
+void emitChange(YAML::Emitter& out, const synthetic::ExtrinsicChange& change) {
+  if (!change.enabled) return;
+  out << YAML::Key << "extrinsic_change" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "at_stamp" << YAML::Value << change.at_stamp_s;
+  out << YAML::Key << "at_seconds_from_start" << YAML::Value << change.at_s;
+  out << YAML::Key << "first_frame" << YAML::Value << change.first_frame;
+  out << YAML::Key << "rotation_deg" << YAML::Value << change.rotation_deg;
+  out << YAML::Key << "translation_cm" << YAML::Value << change.translation_cm;
+  emitVector(out, "axis", change.axis.data(), 3);
+  emitVector(out, "translation_direction", change.translation_direction.data(), 3);
+  out << YAML::Key << "after" << YAML::Value << YAML::BeginMap;
+  emitExtrinsic(out, change.after);
+  out << YAML::EndMap;
+  out << YAML::EndMap;
+}
+
+}  // namespace
+
 void writeSyntheticTruth(const MakeSyntheticBagOptions& o, const synthetic::SyntheticRig& rig) {
   const synthetic::SyntheticConfig& c = rig.config();
   YAML::Emitter out;
@@ -41,6 +63,14 @@ void writeSyntheticTruth(const MakeSyntheticBagOptions& o, const synthetic::Synt
   out << YAML::Key << "distortion_model" << YAML::Value << "plumb_bob";
   emitVector(out, "distortion_coefficients", cam.distortion.data(), 5);
   out << YAML::Key << "bag" << YAML::Value << o.output;
+  emitChange(out, rig.extrinsicChange());
+  const synthetic::ColumnRange empty = rig.emptyColumns();
+  if (empty.end > empty.begin) {
+    out << YAML::Key << "empty_image_region" << YAML::Value << synthetic::toString(c.empty_image_region);
+    // First and last column of the region, inclusive.
+    out << YAML::Key << "empty_image_columns" << YAML::Value << YAML::Flow << YAML::BeginSeq << empty.begin
+        << empty.end - 1 << YAML::EndSeq;
+  }
   out << YAML::EndMap;
   std::ofstream file(o.truth);
   if (!file) throw std::runtime_error("cannot write truth file '" + o.truth + "'");

@@ -21,6 +21,19 @@ for bad in "" "--output $dir/x.bag --frames 0" "--output $dir/x.bag --rig kitti"
   code=$(exit_code $bad)
   check "bad arguments '$bad' exit 2 with one line" test "$code" = 2 -a "$(wc -l < "$dir/err")" = 1
 done
+# The drift and coverage options: each needs its partner or a valid value.
+out="--output $dir/x.bag --frames 40"
+for bad in "$out --extrinsic-change-at 2" "$out --extrinsic-change 0.5,3" \
+           "$out --extrinsic-change-at 2 --extrinsic-change 0.5" "$out --extrinsic-change-at 2 --extrinsic-change 0,0" \
+           "$out --extrinsic-change-at 2 --extrinsic-change a,3" "$out --extrinsic-change-at 2 --extrinsic-change 0.5,3,1" \
+           "$out --extrinsic-change-at 2 --extrinsic-change 90,3" "$out --extrinsic-change-at 4 --extrinsic-change 0.5,3" \
+           "$out --extrinsic-change-at -1 --extrinsic-change 0.5,3" "$out --empty-image-region top" \
+           "$out --empty-image-region"; do
+  # shellcheck disable=SC2086
+  code=$(exit_code $bad)
+  check "bad arguments '$bad' exit 2 with one line" test "$code" = 2 -a "$(wc -l < "$dir/err")" = 1
+done
+check "--help names the drift and region options" bash -c "'$exe' --help | grep -q -- '--extrinsic-change ROT_DEG,TRANS_CM' && '$exe' --help | grep -q -- '--empty-image-region'"
 
 check "small fieldsafe bag" "$exe" --output "$dir/a.bag" --frames 40 --seed 3 --full-cloud --camera-parent base_link
 info="$(rosbag info "$dir/a.bag" 2>/dev/null)"
@@ -44,6 +57,39 @@ check "ms2, options" "$exe" --output "$dir/b.bag" --truth "$dir/b.yaml" --rig ms
 info="$(rosbag info "$dir/b.bag" 2>/dev/null)"
 check "--no-camera-info omits camera_info" bash -c "! grep -q /thermal/camera_info <<<'$info'"
 check "custom frames in truth" grep -q "^camera_frame: cam" "$dir/b.yaml"
+
+# A bump 2 s into a 4 s drive: the truth keeps the start extrinsic at the top and adds the change.
+check "extrinsic change bag" "$exe" --output "$dir/d.bag" --frames 40 --seed 3 --extrinsic-change-at 2 --extrinsic-change 0.5,3
+check "truth: start extrinsic unchanged" cmp <(grep -E "^(rotation_vector|translation):" "$dir/a.bag.truth.yaml") \
+  <(grep -E "^(rotation_vector|translation):" "$dir/d.bag.truth.yaml")
+/usr/bin/python3 - "$dir/d.bag.truth.yaml" >"$dir/drift_check" 2>&1 <<'PY'
+import math, sys, yaml
+t = yaml.safe_load(open(sys.argv[1]))
+c = t["extrinsic_change"]
+assert abs(c["at_stamp"] - 1600000002.0) < 1e-6, c["at_stamp"]
+assert c["rotation_deg"] == 0.5 and c["translation_cm"] == 3, c
+assert abs(math.dist(c["after"]["translation"], t["translation"]) - 0.03) < 1e-9
+for key in ("rotation_vector", "translation", "rotation_matrix", "quaternion_xyzw"):
+    assert key in c["after"], key
+assert abs(sum(a * a for a in c["axis"]) - 1.0) < 1e-9
+PY
+check "truth: extrinsic_change block (at_stamp, sizes, axis, after)" test "$(cat "$dir/drift_check")" = ""
+
+# Left third empty: no mask pixel there in any frame, people elsewhere.
+check "empty left region bag" "$exe" --output "$dir/e.bag" --frames 60 --seed 1 --empty-image-region left --noise realistic
+check "truth: empty_image_region" grep -q "^empty_image_region: left" "$dir/e.bag.truth.yaml"
+/usr/bin/python3 - "$dir/e.bag" >"$dir/region_check" 2>&1 <<'PY'
+import rosbag, sys
+inside = elsewhere = 0
+for _, msg, _ in rosbag.Bag(sys.argv[1]).read_messages(topics=["/thermal/human_mask"]):
+    third = (msg.width + 2) // 3  # columns u with u * 3 / width == 0
+    for v in range(msg.height):
+        row = msg.data[v * msg.step:v * msg.step + msg.width]
+        inside += sum(1 for x in row[:third] if x)
+        elsewhere += sum(1 for x in row[third:] if x)
+assert inside == 0 and elsewhere > 0, (inside, elsewhere)
+PY
+check "empty left region: no mask pixel in the left third, some elsewhere" test "$(cat "$dir/region_check")" = ""
 
 "$exe" --output "$dir/c1.bag" --frames 15 --seed 5 >/dev/null 2>&1
 "$exe" --output "$dir/c2.bag" --frames 15 --seed 5 >/dev/null 2>&1

@@ -8,11 +8,15 @@
 #include <sensor_msgs/image_encodings.h>
 
 #include <cmath>
+#include <array>
 #include <cstring>
+#include <utility>
+#include <vector>
 #include <limits>
 
 namespace tlc = thermal_lidar_calibration;
 using tlc::ros_io::cameraModelFromMsg;
+using tlc::ros_io::decodeCloudPoints;
 using tlc::ros_io::decodeClusters;
 using tlc::ros_io::decodeFrame;
 using tlc::ros_io::decodeMonoImage;
@@ -282,6 +286,95 @@ TEST(DecodeClusters, EmptyCloudIsEmpty) {
                               {"label", sensor_msgs::PointField::INT32}},
                              {});
   EXPECT_TRUE(decodeClusters(msg, "/c").points.empty());
+}
+
+// ~overlay_cloud once ran without these checks: a declared 2^32-1 x 2^32-1 cloud with 16 bytes
+// of data spun for hours, width 1e8 read out of bounds, fields x, x, z ended the node.
+TEST(DecodeCloudPoints, DeclaredSizesTheDataDoesNotHoldAreErrors) {
+  auto cloud = makeCloud({{"x", sensor_msgs::PointField::FLOAT32},
+                          {"y", sensor_msgs::PointField::FLOAT32},
+                          {"z", sensor_msgs::PointField::FLOAT32}},
+                         {{1, 2, 3}});
+  cloud.point_step = 16;
+  cloud.data.assign(16, 0);
+  for (const auto& wh : std::vector<std::pair<std::uint32_t, std::uint32_t>>{
+           {0xFFFFFFFFu, 0xFFFFFFFFu}, {100000000u, 1u}, {1u, 0xFFFFFFFFu}}) {
+    auto huge = cloud;
+    huge.width = wh.first;
+    huge.height = wh.second;
+    huge.row_step = huge.width * huge.point_step;  // wraps in uint32, as a hostile sender would
+    const std::string error = errorOf([&] { decodeCloudPoints(huge, "/c", 1000); });
+    EXPECT_TRUE(error.find("truncated") != std::string::npos ||
+                error.find("more than memory") != std::string::npos ||
+                error.find("row_step") != std::string::npos)
+        << wh.first << " x " << wh.second << ": " << error;
+    EXPECT_EQ(error.rfind("/c: ", 0), 0u) << error;
+  }
+  // Every declared size at its maximum: the products are computed in 64 bits, checked.
+  auto largest = cloud;
+  largest.width = largest.height = largest.point_step = largest.row_step = 0xFFFFFFFFu;
+  EXPECT_NE(errorOf([&] { decodeCloudPoints(largest, "/c", 1000); }).find("row_step"),
+            std::string::npos);
+}
+
+TEST(DecodeCloudPoints, EveryCloudIsCheckedLikeTheClusters) {
+  const auto no_y = makeCloud({{"x", sensor_msgs::PointField::FLOAT32},
+                               {"x", sensor_msgs::PointField::FLOAT32},
+                               {"z", sensor_msgs::PointField::FLOAT32}},
+                              {{1, 2, 3}});
+  EXPECT_NE(errorOf([&] { decodeCloudPoints(no_y, "/c", 1000); }).find("no 'y' field"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { decodeClusters(no_y, "/c"); }).find("no 'y' field"), std::string::npos);
+  auto outside = xyzLabelCloud(sensor_msgs::PointField::INT32);
+  outside.fields[1].offset = 1000;
+  EXPECT_NE(errorOf([&] { decodeCloudPoints(outside, "/c", 1000); }).find("outside point_step"),
+            std::string::npos);
+  auto big = xyzLabelCloud(sensor_msgs::PointField::INT32);
+  big.is_bigendian = true;
+  EXPECT_NE(errorOf([&] { decodeCloudPoints(big, "/c", 1000); }).find("big-endian"),
+            std::string::npos);
+}
+
+TEST(DecodeCloudPoints, ReadsAtMostAboutMaxPointsAndSkipsRowPadding) {
+  std::vector<std::vector<double>> points;
+  for (int i = 0; i < 1000; ++i) points.push_back({double(i), 0.0, 1.0, 7});
+  points[10][0] = std::numeric_limits<double>::quiet_NaN();
+  auto cloud = makeCloud({{"x", sensor_msgs::PointField::FLOAT32},
+                          {"y", sensor_msgs::PointField::FLOAT32},
+                          {"z", sensor_msgs::PointField::FLOAT32},
+                          {"intensity", sensor_msgs::PointField::FLOAT32}},
+                         points);
+  EXPECT_EQ(decodeCloudPoints(cloud, "/c", 5000).size(), 999u);  // NaN dropped
+  const auto every_tenth = decodeCloudPoints(cloud, "/c", 100);
+  ASSERT_EQ(every_tenth.size(), 99u);  // point 10 is NaN
+  EXPECT_FLOAT_EQ(every_tenth[1].x(), 20.0f);
+  // Two rows of 500 with 8 bytes of padding after each row.
+  sensor_msgs::PointCloud2 padded = cloud;
+  padded.width = 500;
+  padded.height = 2;
+  padded.row_step = 500 * cloud.point_step + 8;
+  padded.data.assign(static_cast<std::size_t>(padded.row_step) * 2, 0);
+  for (int r = 0; r < 2; ++r) {
+    std::memcpy(&padded.data[r * padded.row_step], &cloud.data[r * 500 * cloud.point_step],
+                500 * cloud.point_step);
+  }
+  const auto all = decodeCloudPoints(padded, "/c", 5000);
+  ASSERT_EQ(all.size(), 999u);
+  EXPECT_FLOAT_EQ(all.back().x(), 999.0f);
+}
+
+TEST(DecodeMonoImage, HugeDeclaredSizesAreErrorsNotAllocations) {
+  sensor_msgs::Image msg = makeImage("mono8", 4, 4, 1);
+  for (const auto& whs : std::vector<std::array<std::uint32_t, 3>>{
+           {0xFFFFFFFFu, 1u, 0xFFFFFFFFu}, {1u, 0xFFFFFFFFu, 1u}, {70000u, 70000u, 70000u},
+           {4u, 0xFFFFFFFFu, 0xFFFFFFFFu}}) {
+    sensor_msgs::Image huge = msg;
+    huge.width = whs[0];
+    huge.height = whs[1];
+    huge.step = whs[2];
+    const std::string error = errorOf([&] { decodeMonoImage(huge, "/t"); });
+    EXPECT_EQ(error.rfind("/t: ", 0), 0u) << error;
+  }
 }
 
 TEST(CameraModelFromMsg, GoodPlumbBob) {

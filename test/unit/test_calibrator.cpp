@@ -147,3 +147,33 @@ TEST(Calibrate, FailsWithAReasonOnBadRequests) {
     EXPECT_NE(std::string(e.what()).find("population_size"), std::string::npos);
   }
 }
+
+TEST(Calibrate, RecordsTheBestLossPerGenerationThenTheRefinement) {
+  const auto data = pairs(45, 5);
+  CalibrationConfig config;  // Algorithm 2 + refinement
+  config.evolution.population_size = 100;
+  config.evolution.max_iterations = 30;
+  const CalibrationResult r = calibrate(fieldsafeCamera(), data, config);
+  ASSERT_FALSE(r.history.empty());
+  // Each outlier fit, the final fit and at least one refinement round, in that order; within a
+  // stage the best loss never rises (elitism; the refinement only accepts improvements).
+  std::vector<std::string> stages;
+  for (const ConvergenceStep& s : r.history) {
+    if (stages.empty() || stages.back() != s.stage) stages.push_back(s.stage);
+  }
+  ASSERT_GE(stages.size(), 4u);
+  EXPECT_EQ(stages[0], "outlier_fit 1/2");
+  EXPECT_EQ(stages[1], "outlier_fit 2/2");
+  EXPECT_EQ(stages[2], "final_fit");
+  EXPECT_EQ(stages[3], "refine 1");
+  int final_generations = 0;
+  for (std::size_t i = 1; i < r.history.size(); ++i) {
+    const ConvergenceStep& a = r.history[i - 1];
+    const ConvergenceStep& b = r.history[i];
+    if (b.stage == "final_fit") ++final_generations;
+    EXPECT_GE(b.evaluations, a.evaluations) << i;
+    if (a.stage == b.stage) EXPECT_LE(b.best_loss, a.best_loss + 1e-12) << b.stage << " " << b.step;
+  }
+  EXPECT_EQ(final_generations, 30);
+  EXPECT_NEAR(r.history.back().best_loss, r.loss_bilinear, 1e-6);
+}

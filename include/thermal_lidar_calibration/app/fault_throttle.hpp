@@ -12,6 +12,7 @@ namespace thermal_lidar_calibration {
 class FaultThrottle {
  public:
   explicit FaultThrottle(double period_s) : period_(period_s) {}
+  double periodS() const { return period_.count(); }
   // True if `fault` was not reported within the period (and records it as reported now).
   bool shouldReport(const std::string& fault) {
     const auto now = std::chrono::steady_clock::now();

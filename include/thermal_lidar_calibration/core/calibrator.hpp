@@ -25,6 +25,15 @@ struct Progress {
 // Return false to ask the calibration to stop; it then returns its best so far (stopped = true).
 using ProgressCallback = std::function<bool(const Progress&)>;
 
+// One point of the convergence history: the best loss after a generation of a stage, then
+// after each refinement iteration (for the report's convergence plot).
+struct ConvergenceStep {
+  std::string stage;  // "outlier_fit 1/2", "final_fit", "plain_fit", "refine 1", "refine 2", ...
+  int step = 0;       // generation within the stage (refine: iteration, 0 = its start)
+  double best_loss = 0.0;  // Eq. (3) px: nearest rule for the evolution, sub-pixel for refine
+  std::uint64_t evaluations = 0;  // loss evaluations so far, all stages
+};
+
 struct CalibrationResult {
   Extrinsic extrinsic;            // final (refined unless refine = none)
   double loss = 0.0;              // Eq. (3), paper's nearest-pixel rule, on the pairs used
@@ -41,6 +50,10 @@ struct CalibrationResult {
   std::uint64_t evaluations = 0;    // Eq. (3) evaluations
   std::uint64_t points_projected = 0;
   bool stopped = false;             // the callback asked to stop
+  // Best loss per generation of every stage, then the refinement rounds' iterations. The outlier
+  // fits run on subsets of the pairs and the refinement on the sub-pixel loss, so losses are
+  // comparable within a stage, not across stages.
+  std::vector<ConvergenceStep> history;
   double seconds = 0.0;             // wall time of calibrate()
 };
 

@@ -11,6 +11,7 @@
 #include "thermal_lidar_calibration/app/calibration_worker.hpp"
 #include "thermal_lidar_calibration/ros/dataset_bag.hpp"
 #include "thermal_lidar_calibration/app/fault_throttle.hpp"
+#include "thermal_lidar_calibration/node/callback_guard.hpp"
 #include "thermal_lidar_calibration/ros/frame_synchronizer.hpp"
 #include "thermal_lidar_calibration/node/node_parameters.hpp"
 #include "thermal_lidar_calibration/node/overlay_publisher.hpp"
@@ -64,6 +65,7 @@ class CalibrationNode {
   void onImage(const sensor_msgs::Image::ConstPtr& msg);
   void onMask(const sensor_msgs::Image::ConstPtr& msg);
   void onClusters(const sensor_msgs::PointCloud2::ConstPtr& msg);
+  void reportSyncFault(const std::string& topic, const FrameSynchronizer::AddOutcome& outcome);
   void onCameraInfo(const sensor_msgs::CameraInfo::ConstPtr& msg);
   void onFrame(const sensor_msgs::Image::ConstPtr& image, const sensor_msgs::Image::ConstPtr& mask,
                const sensor_msgs::PointCloud2::ConstPtr& clusters);
@@ -119,6 +121,7 @@ class CalibrationNode {
   ros::WallTime last_progress_log_;
   std::uint64_t last_logged_considered_ = ~0ull;
   FaultThrottle fault_throttle_{kFaultLogPeriodS};
+  CallbackGuard guard_{kFaultLogPeriodS};  // no exception from a callback ends the node
 };
 
 }  // namespace ros_io

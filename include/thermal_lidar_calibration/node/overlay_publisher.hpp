@@ -47,6 +47,7 @@ class OverlayPublisher {
   ros::Subscriber cloud_subscriber_;
   int max_points_;
   std::string clusters_topic_;
+  std::string cloud_topic_;  // resolved ~overlay_cloud, for messages
   std::unique_ptr<OverlayRenderer> renderer_;
   std::optional<Extrinsic> estimate_;
   sensor_msgs::Image::ConstPtr mask_msg_;

@@ -25,6 +25,13 @@ struct DecodedClusters {
 // float32 x, y, z plus an integer (any int/uint width) or float `label` field.
 DecodedClusters decodeClusters(const sensor_msgs::PointCloud2& msg, const std::string& topic);
 
+// The finite x, y, z of every k-th point, k chosen so that at most about `max_points` are read
+// (a full cloud for the overlay; other fields are ignored). The layout is checked exactly as
+// decodeClusters checks it (one check for every cloud), so a declared size the data does not
+// hold is an error, never a long loop or a read out of bounds.
+std::vector<Eigen::Vector3f> decodeCloudPoints(const sensor_msgs::PointCloud2& msg,
+                                               const std::string& topic, std::size_t max_points);
+
 // K, size and plumb_bob (or empty/none) distortion. Throws on other models or a zero K.
 CameraModel cameraModelFromMsg(const sensor_msgs::CameraInfo& msg);
 sensor_msgs::CameraInfo cameraInfoFromModel(const CameraModel& camera);

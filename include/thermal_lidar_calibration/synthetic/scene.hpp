@@ -34,6 +34,7 @@ struct SceneConfig {
   double max_turn_rad = 0.79;
   double turn_after_group_m = 8.0;   // the turn starts this far past each group
   int clutter_per_group = 1;         // posts/bushes placed near each group
+  int people_side = 0;               // +1: people only left of the path, -1: only right, 0: either
   void validate() const;             // throws std::invalid_argument
 };
 

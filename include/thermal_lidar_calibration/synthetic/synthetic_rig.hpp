@@ -5,6 +5,8 @@
 
 #include "thermal_lidar_calibration/core/frame_gate.hpp"
 #include "thermal_lidar_calibration/core/person_counter.hpp"
+#include "thermal_lidar_calibration/core/extrinsic.hpp"
+#include "thermal_lidar_calibration/synthetic/image_region.hpp"
 #include "thermal_lidar_calibration/synthetic/noise_model.hpp"
 #include "thermal_lidar_calibration/synthetic/rig_presets.hpp"
 #include "thermal_lidar_calibration/synthetic/scene.hpp"
@@ -30,6 +32,30 @@ struct DetectorConfig {
   int min_mask_pixels = 40;         // segmentation needs at least this many visible pixels
 };
 
+// A bump mid-drive (issue #9): from drive time at_s on, the camera is turned by rotation_deg
+// about a random axis and shifted by translation_cm in a random direction (both drawn from the
+// seed, both in the camera frame): R_after = Rot(axis, rotation_deg) R, t_after = t + shift.
+// So rotationErrorRad(before, after) = rotation_deg and translationErrorM = translation_cm.
+struct ExtrinsicChangeConfig {
+  double at_s = -1.0;  // seconds from the start of the drive; < 0: no change
+  double rotation_deg = 0.0;
+  double translation_cm = 0.0;
+  bool enabled() const { return at_s >= 0.0; }
+};
+
+// The change as drawn for this seed.
+struct ExtrinsicChange {
+  bool enabled = false;
+  double at_s = 0.0;
+  double at_stamp_s = 0.0;        // start_stamp_s + at_s
+  int first_frame = 0;            // first frame index whose stamp is >= at_stamp_s
+  double rotation_deg = 0.0;
+  double translation_cm = 0.0;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitX();                   // unit, camera frame
+  Eigen::Vector3d translation_direction = Eigen::Vector3d::UnitX();  // unit, camera frame
+  Extrinsic before, after;
+};
+
 struct SyntheticConfig {
   RigPreset rig = fieldsafeRig();
   SceneConfig scene;                 // duration_s and speed_mps are overwritten from frames/rig
@@ -44,6 +70,11 @@ struct SyntheticConfig {
   bool full_cloud = false;
   int full_cloud_azimuth_step = 8;   // full cloud: every n-th azimuth, every 2nd ground beam,
   double full_cloud_max_range_m = 30.0;  // and nothing farther (keeps bags small)
+  ExtrinsicChangeConfig extrinsic_change;
+  // Nobody is ever seen in this third of the image: people stand on the other side of the path
+  // (left/right), and in a frame where a person would show there (pixels or LiDAR points within
+  // 2 px) they are not in that frame's world at all; nor are false clusters or mask blobs there.
+  ImageRegion empty_image_region = ImageRegion::kNone;
   void validate() const;  // throws std::invalid_argument
 };
 
@@ -75,20 +106,38 @@ class SyntheticRig {
   explicit SyntheticRig(const SyntheticConfig& config);
 
   SyntheticFrame render(int index) const;
-  // Lower level: one frame from an explicit world snapshot (objects in the LiDAR frame).
+  // Lower level: one frame from an explicit world snapshot (objects in the LiDAR frame), seen
+  // with the extrinsic of frame `index`.
   SyntheticFrame renderSnapshot(const std::vector<WorldObject>& objects, int index, double stamp_s) const;
-  // The objects of frame `index` in the LiDAR frame (people first, then clutter in range).
+  // The objects of frame `index` in the LiDAR frame (people first, then clutter in range),
+  // without the people an empty image region keeps out of that frame.
   std::vector<WorldObject> snapshot(int index) const;
 
   const SyntheticConfig& config() const { return config_; }
   const Scene& scene() const { return *scene_; }
-  const ThermalRenderer& renderer() const { return *renderer_; }
+  const ThermalRenderer& renderer() const { return *renderer_; }  // the extrinsic at the start
   double groundZ() const { return -config_.rig.lidar_height_m; }
 
+  // The true extrinsic in force at frame `index` and the camera that sees with it.
+  const Extrinsic& truthAt(int index) const;
+  const ThermalRenderer& rendererAt(int index) const;
+  const ExtrinsicChange& extrinsicChange() const { return change_; }
+  // Columns no person, cluster or mask blob ever reaches (empty when no region is set).
+  ColumnRange emptyColumns() const;
+
  private:
+  struct Observation;
+  Observation observe(const std::vector<WorldObject>& objects, int index) const;
+  // Drops every person who would be seen (pixels or LiDAR points) in the empty region.
+  void removePeopleSeenInEmptyRegion(std::vector<WorldObject>& objects, int index) const;
+  bool projectsIntoEmptyRegion(const Eigen::Vector3f& point_lidar, int index, int margin_px) const;
+  void drawChange();
+
   SyntheticConfig config_;
   std::unique_ptr<Scene> scene_;
   std::unique_ptr<ThermalRenderer> renderer_;
+  std::unique_ptr<ThermalRenderer> renderer_after_;  // with the extrinsic after the change
+  ExtrinsicChange change_;
   std::vector<double> person_grey_;
 };
 

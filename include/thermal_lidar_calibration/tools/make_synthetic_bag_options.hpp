@@ -29,6 +29,10 @@ struct MakeSyntheticBagOptions {
   double time_jitter_s = 0.0;
   std::string lidar_frame = "velodyne";
   std::string camera_frame = "thermal_optical";
+  double extrinsic_change_at_s = -1.0;  // < 0: no change
+  double extrinsic_change_rotation_deg = 0.0;
+  double extrinsic_change_translation_cm = 0.0;
+  std::string empty_image_region = "none";  // none | left | centre | right
   bool help = false;
 };
 

@@ -1,0 +1,118 @@
+#pragma once
+// The drift watch (issue #9): kept pairs go in one by one, in time order; every
+// `period_pairs` new pairs the latest `window_pairs` are tested against the extrinsic in use
+// (the reference, drift_window_test.hpp), and the verdict moves OK / WARN / ERROR
+// (drift_state.hpp). Once a change is confirmed the monitor finds where in the window it
+// happened and fits the new extrinsic on the pairs since then (the candidate), refitting it as
+// pairs come in; it is final once it rests on `update_pairs` pairs (then it is kept: a later
+// stretch of pairs with poorer geometry must not undo it).
+//
+// Accepting the candidate makes it the reference. Accepted before it is final (auto-update at
+// the moment of confirmation), the monitor goes on fitting the pairs since the change and
+// offers the final one again once it has them (updateReady()), so an early update is followed
+// by an accurate one. ROS-free; the node and calibrate_bag --monitor drive it alike.
+
+#include "thermal_lidar_calibration/core/calibration_config.hpp"
+#include "thermal_lidar_calibration/core/calibration_pair.hpp"
+#include "thermal_lidar_calibration/core/camera_model.hpp"
+#include "thermal_lidar_calibration/core/drift_config.hpp"
+#include "thermal_lidar_calibration/core/drift_state.hpp"
+#include "thermal_lidar_calibration/core/drift_window_test.hpp"
+#include "thermal_lidar_calibration/core/extrinsic.hpp"
+
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <vector>
+
+namespace thermal_lidar_calibration {
+
+// One window test: a row of the drift timeline.
+struct DriftRecord {
+  double stamp_s = 0.0;           // the newest pair of the window
+  std::uint64_t pairs_seen = 0;   // kept pairs given to the monitor so far
+  DriftState state = DriftState::kOk;  // after this test
+  DriftWindowTest test;
+  double seconds = 0.0;           // wall time of this step (test, change point, candidate)
+};
+
+// A confirmed new extrinsic and the evidence for it.
+struct DriftCandidate {
+  Extrinsic extrinsic;
+  DriftChange change;             // against the reference in use
+  double loss_reference = 0.0;    // Eq. (3), nearest rule, on the candidate's inliers
+  double loss_fit = 0.0;
+  std::size_t pairs = 0;          // pairs since the estimated change it was fitted on
+  std::size_t pairs_used = 0;     // of those, its inliers
+  double change_stamp_s = 0.0;    // the first pair after the estimated change
+  double stamp_s = 0.0;           // the newest pair it saw
+  bool complete = false;          // rests on update_pairs pairs
+  double p_value = 1.0;           // of the window test that confirmed the change
+  std::optional<double> first_warn_stamp_s, first_error_stamp_s;
+};
+
+// An accepted candidate: the history entry of the result file.
+struct DriftUpdate {
+  Extrinsic old_reference;
+  DriftCandidate accepted;
+};
+
+class DriftMonitor {
+ public:
+  // Throws std::invalid_argument on a bad config.
+  DriftMonitor(const CameraModel& camera, const Extrinsic& reference, const DriftConfig& drift,
+               const CalibrationConfig& calibration);
+
+  // A kept pair, newer than the previous one (its image is dropped: the monitor needs the mask
+  // and points only). Returns the test's record when one ran.
+  std::optional<DriftRecord> addPair(CalibrationPair pair);
+
+  DriftState state() const { return machine_.state(); }
+  const Extrinsic& reference() const { return reference_; }
+  const std::optional<DriftRecord>& lastRecord() const { return last_record_; }
+  const std::optional<DriftCandidate>& candidate() const { return candidate_; }
+  std::optional<double> firstWarnStamp() const { return machine_.firstWarnStamp(); }
+  std::optional<double> firstErrorStamp() const { return machine_.firstErrorStamp(); }
+  // A candidate auto-update should take now: a confirmed change (ERROR), or the final fit after
+  // an early acceptance.
+  bool updateReady() const;
+  // Makes the candidate the reference (state OK, a new episode); nullopt if there is none.
+  std::optional<DriftUpdate> acceptCandidate();
+  // A new reference from elsewhere (a new calibration): forgets the change and the candidate,
+  // keeps the pairs.
+  void setReference(const Extrinsic& reference);
+
+  std::uint64_t pairsSeen() const { return next_seq_; }
+  std::size_t pairsInWindow() const;
+  double secondsInTests() const { return seconds_; }  // all steps so far
+  const DriftConfig& config() const { return drift_; }
+
+ private:
+  struct Held {
+    std::uint64_t seq;
+    CalibrationPair pair;
+  };
+  std::vector<CalibrationPair> lastPairs(std::size_t n) const;
+  std::vector<CalibrationPair> pairsSince(std::uint64_t seq, std::size_t at_most) const;
+  // Places the change among the held pairs: where they start fitting `fit` better than the
+  // reference (change_point.hpp).
+  void locateChange(const Extrinsic& fit);
+  void fitCandidate(const Extrinsic& start);
+
+  CameraModel camera_;
+  Extrinsic reference_;
+  DriftConfig drift_;
+  CalibrationConfig calibration_;
+  DriftStateMachine machine_;
+  std::deque<Held> held_;   // the latest max(window_pairs, update_pairs) pairs
+  std::uint64_t next_seq_ = 0;
+  int since_test_ = 0;
+  std::optional<std::uint64_t> change_seq_;  // first pair after the located change
+  bool settling_ = false;   // accepted early: still fitting the pairs since the change
+  std::optional<DriftCandidate> candidate_;
+  std::optional<DriftRecord> last_record_;
+  double confirm_p_value_ = 1.0;  // of the window test that confirmed the change
+  double seconds_ = 0.0;
+};
+
+}  // namespace thermal_lidar_calibration

@@ -1,0 +1,54 @@
+#pragma once
+// good / usable / collect_more, from the uncertainty per axis and the coverage, with one line
+// per finding that says what was wrong and what to do ("no people in the left third of the
+// image: have people walk there"). Thresholds are configurable (quality_* parameters).
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "thermal_lidar_calibration/core/coverage.hpp"
+#include "thermal_lidar_calibration/core/uncertainty.hpp"
+
+namespace thermal_lidar_calibration {
+
+enum class Verdict : std::uint8_t { kGood = 0, kUsable = 1, kCollectMore = 2 };
+const char* toString(Verdict verdict);  // "good", "usable", "collect_more"
+
+struct VerdictConfig {
+  // Uncertainty: the largest 95 % half-width over the axes.
+  double good_rotation_deg = 0.1;
+  double good_translation_cm = 2.0;
+  double usable_rotation_deg = 0.3;
+  double usable_translation_cm = 5.0;
+  // Pairs used.
+  int good_pairs = 40;
+  int usable_pairs = 20;
+  // Each horizontal third of the image should hold this fraction of the person pixels: below
+  // `usable_third_fraction` the verdict is collect_more, below `good_third_fraction` usable.
+  double usable_third_fraction = 0.03;
+  double good_third_fraction = 0.10;
+  // People both near and far (coverage near_far_split_m): at least this many of each.
+  int min_people_near = 3;
+  int min_people_far = 3;
+  // Distinct places people stood (relative to the sensors).
+  int good_distinct_positions = 15;
+  int usable_distinct_positions = 8;
+  void validate() const;  // throws std::invalid_argument naming the key and range
+};
+
+struct VerdictReport {
+  Verdict verdict = Verdict::kCollectMore;
+  // One line per finding, worst first: "what: what to do". When all is well, one line saying so.
+  std::vector<std::string> reasons;
+  // The image thirds with too few people (names from imageThirdName), for the node's status.
+  std::vector<std::string> missing_regions;
+};
+
+// `uncertainty` may be absent (while collecting, before a fit): then only coverage and pairs
+// decide, and the verdict is at best usable.
+VerdictReport judgeQuality(const Coverage& coverage, const std::optional<Uncertainty>& uncertainty,
+                           const VerdictConfig& config);
+
+}  // namespace thermal_lidar_calibration

@@ -1,0 +1,20 @@
+#include "thermal_lidar_calibration/core/drift_config.hpp"
+
+#include "parameter_range.hpp"
+
+namespace thermal_lidar_calibration {
+using detail::requireRange;
+
+void DriftConfig::validate() const {
+  requireRange("monitor_window_pairs", window_pairs, 6, 100000);
+  requireRange("monitor_period_pairs", period_pairs, 1, window_pairs);
+  requireRange("monitor_confirm_windows", confirm_windows, 1, 1000);
+  requireRange("monitor_significance", significance, 0.0, 0.5, true);
+  requireRange("monitor_min_rotation_deg", min_rotation_deg, 0.0, 180.0);
+  requireRange("monitor_min_translation_cm", min_translation_cm, 0.0, 1e5);
+  requireRange("monitor_folds", folds, 2, window_pairs / 3);
+  requireRange("monitor_update_pairs", update_pairs, 6, 100000);
+  requireRange("monitor_fit_max_evaluations", fit_max_evaluations, 1, 100000000);
+}
+
+}  // namespace thermal_lidar_calibration

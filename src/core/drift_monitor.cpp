@@ -1,0 +1,182 @@
+#include "thermal_lidar_calibration/core/drift_monitor.hpp"
+
+#include "thermal_lidar_calibration/core/change_point.hpp"
+#include "thermal_lidar_calibration/core/inlier_selection.hpp"
+#include "thermal_lidar_calibration/core/local_fit.hpp"
+#include "thermal_lidar_calibration/core/loss.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <utility>
+
+namespace thermal_lidar_calibration {
+
+DriftMonitor::DriftMonitor(const CameraModel& camera, const Extrinsic& reference,
+                           const DriftConfig& drift, const CalibrationConfig& calibration)
+    : camera_(camera),
+      reference_(reference),
+      drift_(drift),
+      calibration_(calibration),
+      machine_(drift.confirm_windows) {
+  camera_.validate();
+  drift_.validate();
+  calibration_.validate();
+}
+
+std::size_t DriftMonitor::pairsInWindow() const {
+  return std::min(held_.size(), static_cast<std::size_t>(drift_.window_pairs));
+}
+
+std::vector<CalibrationPair> DriftMonitor::lastPairs(std::size_t n) const {
+  std::vector<CalibrationPair> out;
+  const std::size_t first = held_.size() - std::min(n, held_.size());
+  for (std::size_t i = first; i < held_.size(); ++i) out.push_back(held_[i].pair);
+  return out;
+}
+
+std::vector<CalibrationPair> DriftMonitor::pairsSince(std::uint64_t seq,
+                                                      std::size_t at_most) const {
+  std::vector<CalibrationPair> out;
+  for (const Held& h : held_) {
+    if (h.seq >= seq) out.push_back(h.pair);
+  }
+  if (out.size() > at_most) out.erase(out.begin(), out.end() - static_cast<long>(at_most));
+  return out;
+}
+
+std::optional<DriftRecord> DriftMonitor::addPair(CalibrationPair pair) {
+  pair.image.release();
+  held_.push_back({next_seq_++, std::move(pair)});
+  const std::size_t keep =
+      static_cast<std::size_t>(std::max(drift_.window_pairs, drift_.update_pairs));
+  while (held_.size() > keep) held_.pop_front();
+  ++since_test_;
+  if (held_.size() < static_cast<std::size_t>(drift_.window_pairs) ||
+      since_test_ < drift_.period_pairs) {
+    return std::nullopt;
+  }
+  since_test_ = 0;
+
+  const auto started = std::chrono::steady_clock::now();
+  const std::vector<CalibrationPair> window = lastPairs(drift_.window_pairs);
+  DriftRecord record;
+  record.stamp_s = window.back().stamp_s;
+  record.pairs_seen = next_seq_;
+  record.test = testDriftWindow(camera_, window, reference_, drift_, calibration_);
+  const DriftState before = machine_.state();
+  record.state = machine_.onTest(record.test.changed(), record.stamp_s);
+
+  if (record.test.changed()) {
+    if (settling_) {
+      // A change against the early update: start over from this window.
+      settling_ = false;
+      change_seq_.reset();
+      candidate_.reset();
+    }
+    if (record.state == DriftState::kError && before != DriftState::kError) {
+      confirm_p_value_ = record.test.p_value;
+    }
+  } else if (record.state == DriftState::kOk && !settling_) {
+    change_seq_.reset();  // the suspicion did not hold
+  }
+  const bool candidate_final = candidate_ && candidate_->complete;
+  if (record.state == DriftState::kError && !candidate_final) {
+    // Place the change with the best pose for "after" there is (the candidate once there is
+    // one, more pairs make it sharper), fit the pairs since then, and place it again with that
+    // fit: a split placed too early hands the fit old pairs, which pull it back.
+    const Extrinsic after = candidate_ ? candidate_->extrinsic : record.test.fit;
+    locateChange(after);
+    fitCandidate(after);
+    const std::optional<std::uint64_t> placed = change_seq_;
+    locateChange(candidate_ ? candidate_->extrinsic : after);
+    if (change_seq_ != placed) fitCandidate(candidate_ ? candidate_->extrinsic : after);
+  } else if (record.test.changed() && record.state != DriftState::kError) {
+    locateChange(record.test.fit);
+  } else if (settling_ && !candidate_final) {
+    fitCandidate(reference_);
+  }
+
+  record.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  seconds_ += record.seconds;
+  last_record_ = record;
+  return record;
+}
+
+void DriftMonitor::locateChange(const Extrinsic& fit) {
+  const std::vector<CalibrationPair> held = lastPairs(held_.size());
+  const LossEvaluator bilinear(
+      camera_, held,
+      LossConfig{calibration_.behind_camera_penalty_c1, PixelRule::kBilinear});
+  const double threshold = calibration_.outlier.threshold_px;
+  std::vector<double> differences;
+  for (std::size_t i = 0; i < held.size(); ++i) {
+    const double at_reference = bilinear.pairLoss(i, reference_);
+    const double at_fit = bilinear.pairLoss(i, fit);
+    // A pair neither explains (mismatched people) says nothing about when the change came.
+    differences.push_back(std::min(at_reference, at_fit) > threshold ? 0.0
+                                                                      : at_reference - at_fit);
+  }
+  // At least 6 pairs after the change: the candidate has six parameters to fit on them.
+  constexpr std::size_t min_after = 6;
+  const std::size_t k = signChangePoint(differences, min_after);
+  change_seq_ = held_[held_.size() - held.size() + k].seq;
+}
+
+void DriftMonitor::fitCandidate(const Extrinsic& start) {
+  if (!change_seq_) return;
+  const std::vector<CalibrationPair> pairs =
+      pairsSince(*change_seq_, static_cast<std::size_t>(drift_.update_pairs));
+  if (pairs.size() < 6) return;
+  const LossEvaluator nearest(
+      camera_, pairs, LossConfig{calibration_.behind_camera_penalty_c1, PixelRule::kNearest});
+  const LocalRefinement refinement(nearest.withPixelRule(PixelRule::kBilinear),
+                                   driftRefineConfig(drift_, calibration_),
+                                   calibration_.num_threads);
+  const LocalFit fit = fitLocally(nearest, refinement, start,
+                                  refinementCandidates(nearest, calibration_.refine.exclude_truncated),
+                                  calibration_);
+  DriftCandidate c;
+  c.extrinsic = fit.estimate;
+  c.change = driftChange(fit.estimate, reference_);
+  c.loss_reference = nearest.loss(reference_, fit.used);
+  c.loss_fit = nearest.loss(fit.estimate, fit.used);
+  c.pairs = pairs.size();
+  c.pairs_used = fit.used.size();
+  c.change_stamp_s = pairs.front().stamp_s;
+  for (const Held& h : held_) {
+    if (h.seq == *change_seq_) c.change_stamp_s = h.pair.stamp_s;
+  }
+  c.stamp_s = pairs.back().stamp_s;
+  c.complete = pairs.size() >= static_cast<std::size_t>(drift_.update_pairs);
+  c.p_value = confirm_p_value_;
+  c.first_warn_stamp_s = machine_.firstWarnStamp();
+  c.first_error_stamp_s = machine_.firstErrorStamp();
+  candidate_ = c;
+}
+
+bool DriftMonitor::updateReady() const {
+  if (!candidate_) return false;
+  return machine_.state() == DriftState::kError || (settling_ && candidate_->complete);
+}
+
+std::optional<DriftUpdate> DriftMonitor::acceptCandidate() {
+  if (!candidate_) return std::nullopt;
+  DriftUpdate update{reference_, *candidate_};
+  reference_ = candidate_->extrinsic;
+  settling_ = !candidate_->complete;
+  if (!settling_) change_seq_.reset();
+  candidate_.reset();
+  machine_.reset();
+  return update;
+}
+
+void DriftMonitor::setReference(const Extrinsic& reference) {
+  reference_ = reference;
+  machine_.reset();
+  change_seq_.reset();
+  settling_ = false;
+  candidate_.reset();
+}
+
+}  // namespace thermal_lidar_calibration

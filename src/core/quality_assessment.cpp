@@ -1,0 +1,48 @@
+#include "thermal_lidar_calibration/core/quality_assessment.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace thermal_lidar_calibration {
+
+void QualityConfig::validate() const {
+  uncertainty.validate();
+  coverage.validate();
+  verdict.validate();
+}
+
+std::vector<std::size_t> usedPairs(const CalibrationResult& result) {
+  std::vector<std::size_t> used;
+  for (std::size_t i = 0; i < result.inliers.size(); ++i) {
+    if (result.inliers[i]) used.push_back(i);
+  }
+  return used;
+}
+
+QualityAssessment assessQuality(const CameraModel& camera,
+                                const std::vector<CalibrationPair>& pairs,
+                                const CalibrationResult& result, const QualityConfig& config,
+                                double behind_camera_penalty_c1,
+                                const std::optional<Extrinsic>& reference,
+                                const UncertaintyCallback& callback) {
+  config.validate();
+  if (result.inliers.size() != pairs.size()) {
+    throw std::invalid_argument("quality: the result has " + std::to_string(result.inliers.size()) +
+                                " pair flags for " + std::to_string(pairs.size()) + " pairs");
+  }
+  const std::vector<std::size_t> used = usedPairs(result);
+  QualityAssessment q;
+  q.coverage = computeCoverage(camera, pairs, used, result.extrinsic, config.coverage);
+  const LossEvaluator loss(camera, pairs,
+                           LossConfig{behind_camera_penalty_c1, PixelRule::kBilinear});
+  if (config.uncertainty_enabled && used.size() >= 3) {
+    q.uncertainty = estimateUncertainty(loss, result.extrinsic, used, config.uncertainty, callback);
+  }
+  q.verdict = judgeQuality(q.coverage, q.uncertainty, config.verdict);
+  if (reference && !used.empty()) {
+    q.reference = compareWithReference(loss, result.extrinsic, *reference, used, q.uncertainty);
+  }
+  return q;
+}
+
+}  // namespace thermal_lidar_calibration

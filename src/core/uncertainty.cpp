@@ -1,0 +1,194 @@
+#include "thermal_lidar_calibration/core/uncertainty.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+
+#include "thermal_lidar_calibration/core/local_refinement.hpp"
+#include "thermal_lidar_calibration/core/pose_difference.hpp"
+#include "thermal_lidar_calibration/core/random.hpp"
+#include "threads.hpp"
+
+namespace thermal_lidar_calibration {
+namespace {
+
+void requireRange(const char* key, double value, double lo, double hi, bool open_lo) {
+  if (!(std::isfinite(value) && (open_lo ? value > lo : value >= lo) && value <= hi)) {
+    std::ostringstream s;
+    s << "parameter '" << key << "' = " << value << ": must be in " << (open_lo ? "(" : "[") << lo
+      << ", " << hi << "]";
+    throw std::invalid_argument(s.str());
+  }
+}
+
+// Resample b's own seed (splitmix64): independent streams, whatever thread runs them.
+std::uint64_t resampleSeed(std::uint64_t seed, std::uint64_t b) {
+  std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (b + 1);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+
+// n pairs drawn with replacement, in blocks of `block` consecutive pairs (moving-block
+// bootstrap: blocks start anywhere in [0, n - block]).
+std::vector<std::size_t> drawResample(const std::vector<std::size_t>& pairs, int block, Rng& rng) {
+  const std::size_t n = pairs.size();
+  const std::size_t len = std::min<std::size_t>(static_cast<std::size_t>(block), n);
+  std::vector<std::size_t> out;
+  out.reserve(n + len);
+  while (out.size() < n) {
+    const std::size_t start = rng.index(n - len + 1);
+    for (std::size_t k = 0; k < len && out.size() < n; ++k) out.push_back(pairs[start + k]);
+  }
+  return out;
+}
+
+// Linear interpolation between order statistics (the common "type 7" definition).
+double quantile(std::vector<double> values, double q) {
+  std::sort(values.begin(), values.end());
+  const double pos = q * static_cast<double>(values.size() - 1);
+  const std::size_t lo = static_cast<std::size_t>(std::floor(pos));
+  const std::size_t hi = std::min(lo + 1, values.size() - 1);
+  return values[lo] + (pos - static_cast<double>(lo)) * (values[hi] - values[lo]);
+}
+
+void summarise(Uncertainty& u) {
+  const double tail = (1.0 - u.confidence) / 2.0;
+  for (int k = 0; k < 6; ++k) {
+    std::vector<double> axis;
+    axis.reserve(u.deviations.size());
+    for (const Vector6d& d : u.deviations) axis.push_back(d[k]);
+    u.lower[k] = quantile(axis, tail);
+    u.upper[k] = quantile(axis, 1.0 - tail);
+    u.mean[k] = std::accumulate(axis.begin(), axis.end(), 0.0) / static_cast<double>(axis.size());
+    double sum_sq = 0.0;
+    for (double a : axis) sum_sq += (a - u.mean[k]) * (a - u.mean[k]);
+    u.std_dev[k] = std::sqrt(sum_sq / static_cast<double>(axis.size() - 1));
+    // Symmetric about the estimate and wide enough to hold the whole percentile interval: the
+    // interval a user reads as "estimate +- half-width".
+    const double half = std::max(std::abs(u.lower[k]), std::abs(u.upper[k]));
+    (k < 3 ? u.rotation_deg[k] : u.translation_cm[k - 3]) = half;
+  }
+}
+
+}  // namespace
+
+UncertaintyConfig UncertaintyConfig::quick() {
+  UncertaintyConfig c;
+  c.resamples = 30;
+  c.min_step_rot_rad = 1e-4;
+  c.min_step_trans_m = 1e-4;
+  c.max_evaluations = 1500;
+  return c;
+}
+
+void UncertaintyConfig::validate() const {
+  requireRange("uncertainty_resamples", resamples, 2, 100000, false);
+  requireRange("uncertainty_block_pairs", block_pairs, 1, 100000, false);
+  requireRange("uncertainty_confidence", confidence, 0.0, 0.9999, true);
+  requireRange("uncertainty_num_threads", num_threads, 0, 1024, false);
+  requireRange("uncertainty_initial_step_rot_rad", initial_step_rot_rad, 0.0, 1.0, true);
+  requireRange("uncertainty_initial_step_trans_m", initial_step_trans_m, 0.0, 10.0, true);
+  requireRange("uncertainty_min_step_rot_rad", min_step_rot_rad, 0.0, initial_step_rot_rad, true);
+  requireRange("uncertainty_min_step_trans_m", min_step_trans_m, 0.0, initial_step_trans_m, true);
+  requireRange("uncertainty_max_evaluations", max_evaluations, 1, 1e8, false);
+}
+
+std::vector<std::size_t> resamplePairs(const std::vector<std::size_t>& pairs, int block_pairs,
+                                       std::uint64_t seed, int index) {
+  if (pairs.empty() || block_pairs < 1) {
+    throw std::invalid_argument("resamplePairs: needs pairs and block_pairs >= 1");
+  }
+  Rng rng(resampleSeed(seed, static_cast<std::uint64_t>(index)));
+  return drawResample(pairs, block_pairs, rng);
+}
+
+std::string Uncertainty::method() const {
+  std::ostringstream s;
+  s << "bootstrap over pairs";
+  if (block_pairs > 1) s << " in blocks of " << block_pairs;
+  s << ", " << resamples << " resamples, local refinement from the estimate";
+  return s.str();
+}
+
+Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& estimate,
+                                const std::vector<std::size_t>& pairs,
+                                const UncertaintyConfig& config,
+                                const UncertaintyCallback& callback) {
+  const auto started = std::chrono::steady_clock::now();
+  config.validate();
+  if (pairs.size() < 3) {
+    throw std::invalid_argument("uncertainty: needs at least 3 pairs, got " +
+                                std::to_string(pairs.size()));
+  }
+  for (std::size_t i : pairs) {
+    if (i >= loss.pairCount()) throw std::invalid_argument("uncertainty: pair index out of range");
+  }
+  const LossEvaluator bilinear = loss.withPixelRule(PixelRule::kBilinear);
+  RefineConfig refine;
+  refine.initial_step_rot_rad = config.initial_step_rot_rad;
+  refine.initial_step_trans_m = config.initial_step_trans_m;
+  refine.min_step_rot_rad = config.min_step_rot_rad;
+  refine.min_step_trans_m = config.min_step_trans_m;
+  refine.max_evaluations = config.max_evaluations;
+  // One thread per resample: a resample's refinement evaluates 12 probes at a time, too few to
+  // share well, while the resamples are independent.
+  const LocalRefinement refinement(bilinear, refine, 1);
+
+  const int total = config.resamples;
+  std::vector<Vector6d> deviations(static_cast<std::size_t>(total));
+  std::vector<char> done(static_cast<std::size_t>(total), 0);
+  std::vector<std::uint64_t> evaluations(static_cast<std::size_t>(total), 0);
+  std::atomic<bool> stop{false};
+  std::atomic<int> finished{0};
+  const int team = std::max(1, std::min(resolveThreads(config.num_threads), total));
+#pragma omp parallel for schedule(dynamic, 1) num_threads(team)
+  for (int b = 0; b < total; ++b) {
+    if (stop.load()) continue;
+    const std::vector<std::size_t> resample =
+        resamplePairs(pairs, config.block_pairs, config.seed, b);
+    const RefineOutcome out = refinement.run(estimate, resample);
+    deviations[static_cast<std::size_t>(b)] = asVector(poseDifference(out.best, estimate));
+    evaluations[static_cast<std::size_t>(b)] = out.evaluations;
+    done[static_cast<std::size_t>(b)] = 1;
+    const int n = ++finished;
+    if (callback) {
+#pragma omp critical(tlc_uncertainty_callback)
+      if (!stop.load() && !callback(n, total)) stop = true;
+    }
+  }
+
+  Uncertainty u;
+  u.block_pairs = config.block_pairs;
+  u.confidence = config.confidence;
+  u.pairs = pairs.size();
+  u.stopped = stop.load();
+  for (int b = 0; b < total; ++b) {
+    if (!done[static_cast<std::size_t>(b)]) continue;
+    u.deviations.push_back(deviations[static_cast<std::size_t>(b)]);
+    u.evaluations += evaluations[static_cast<std::size_t>(b)];
+  }
+  u.resamples = static_cast<int>(u.deviations.size());
+  if (u.resamples >= 2) summarise(u);
+  u.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return u;
+}
+
+Uncertainty estimateUncertainty(const CameraModel& camera,
+                                const std::vector<CalibrationPair>& pairs,
+                                const Extrinsic& estimate, const UncertaintyConfig& config,
+                                double behind_camera_penalty_c1) {
+  const LossEvaluator loss(camera, pairs,
+                           LossConfig{behind_camera_penalty_c1, PixelRule::kBilinear});
+  std::vector<std::size_t> all(pairs.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  return estimateUncertainty(loss, estimate, all, config);
+}
+
+}  // namespace thermal_lidar_calibration

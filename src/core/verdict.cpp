@@ -1,0 +1,185 @@
+#include "thermal_lidar_calibration/core/verdict.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+
+namespace thermal_lidar_calibration {
+namespace {
+
+void requireRange(const char* key, double value, double lo, double hi) {
+  if (!(std::isfinite(value) && value >= lo && value <= hi)) {
+    std::ostringstream s;
+    s << "parameter '" << key << "' = " << value << ": must be in [" << lo << ", " << hi << "]";
+    throw std::invalid_argument(s.str());
+  }
+}
+
+void requireOrder(const char* good_key, double good, const char* usable_key, double usable,
+                  bool good_is_smaller) {
+  if (good_is_smaller ? good > usable : good < usable) {
+    std::ostringstream s;
+    s << "parameters '" << good_key << "' = " << good << " and '" << usable_key << "' = " << usable
+      << ": the good threshold must be " << (good_is_smaller ? "at most" : "at least")
+      << " the usable one";
+    throw std::invalid_argument(s.str());
+  }
+}
+
+std::string format(const char* fmt, double a, double b = 0.0, double c = 0.0) {
+  char buf[256];
+  std::snprintf(buf, sizeof(buf), fmt, a, b, c);
+  return buf;
+}
+
+struct Finding {
+  Verdict level;
+  std::string text;
+};
+
+const char* kAxis[3] = {"x", "y", "z"};
+
+// The axis with the largest half-width and its value.
+std::pair<int, double> widest(const Eigen::Vector3d& half_widths) {
+  int k = 0;
+  half_widths.maxCoeff(&k);
+  return {k, half_widths[k]};
+}
+
+void judgeUncertainty(const Uncertainty& u, const VerdictConfig& c, std::vector<Finding>& out) {
+  const auto [rk, rot] = widest(u.rotation_deg);
+  const auto [tk, trans] = widest(u.translation_cm);
+  const auto level = [](double v, double good, double usable) {
+    return v <= good ? Verdict::kGood : v <= usable ? Verdict::kUsable : Verdict::kCollectMore;
+  };
+  const Verdict rot_level = level(rot, c.good_rotation_deg, c.usable_rotation_deg);
+  const Verdict trans_level = level(trans, c.good_translation_cm, c.usable_translation_cm);
+  if (rot_level != Verdict::kGood) {
+    out.push_back({rot_level,
+                   std::string("rotation about the camera's ") + kAxis[rk] + " axis is uncertain " +
+                       format("by +-%.3f deg (good <= %.3g, usable <= %.3g)", rot,
+                              c.good_rotation_deg, c.usable_rotation_deg) +
+                       ": collect more pairs with people spread across the image, far ones too"});
+  }
+  if (trans_level != Verdict::kGood) {
+    const std::string advice =
+        tk == 2 ? ": collect more pairs with people near the vehicle (along the optical axis "
+                  "tilt trades with height; near people pin it)"
+                : ": collect more pairs with people near the vehicle and across the image";
+    out.push_back({trans_level, std::string("translation along the camera's ") + kAxis[tk] +
+                                    " axis is uncertain " +
+                                    format("by +-%.2f cm (good <= %.3g, usable <= %.3g)", trans,
+                                           c.good_translation_cm, c.usable_translation_cm) +
+                                    advice});
+  }
+}
+
+void judgeCoverage(const Coverage& cov, const VerdictConfig& c, std::vector<Finding>& out,
+                   std::vector<std::string>& missing) {
+  const double pairs = static_cast<double>(cov.pairs);
+  if (pairs < c.good_pairs) {
+    out.push_back({pairs < c.usable_pairs ? Verdict::kCollectMore : Verdict::kUsable,
+                   format("only %.0f pairs used (usable from %.0f, good from %.0f)", pairs,
+                          c.usable_pairs, c.good_pairs) +
+                       ": keep collecting"});
+  }
+  for (int third = 0; third < 3; ++third) {
+    const double f = cov.thirdFraction(third);
+    if (f >= c.good_third_fraction) continue;
+    const std::string where = std::string(imageThirdName(third)) + " third of the image";
+    if (f < c.usable_third_fraction) missing.push_back(imageThirdName(third));
+    out.push_back({f < c.usable_third_fraction ? Verdict::kCollectMore : Verdict::kUsable,
+                   (f == 0.0 ? "no people in the " + where
+                             : "few people in the " + where +
+                                   format(" (%.1f %% of the person pixels)", 100.0 * f)) +
+                       ": have people walk there"});
+  }
+  const auto range_finding = [&](std::size_t count, int minimum, const std::string& what,
+                                 const std::string& todo) {
+    if (static_cast<int>(count) >= minimum) return;
+    out.push_back(
+        {count == 0 ? Verdict::kCollectMore : Verdict::kUsable,
+         (count == 0 ? "no people " : format("only %.0f people ", count)) + what + ": " + todo});
+  };
+  const std::string split = format("%.3g m", cov.near_far_split_m);
+  range_finding(cov.people_near, c.min_people_near, "nearer than " + split,
+                "have people walk closer to the vehicle (near people pin the translation)");
+  range_finding(cov.people_far, c.min_people_far, "farther than " + split,
+                "have people walk farther away (far people pin the rotation)");
+  const double places = static_cast<double>(cov.distinct_positions);
+  if (places < c.good_distinct_positions) {
+    out.push_back({places < c.usable_distinct_positions ? Verdict::kCollectMore : Verdict::kUsable,
+                   format("people stood in only %.0f distinct places (good from %.0f)", places,
+                          c.good_distinct_positions) +
+                       ": have them walk around while the vehicle moves"});
+  }
+}
+
+}  // namespace
+
+const char* toString(Verdict verdict) {
+  switch (verdict) {
+    case Verdict::kGood:
+      return "good";
+    case Verdict::kUsable:
+      return "usable";
+    default:
+      return "collect_more";
+  }
+}
+
+void VerdictConfig::validate() const {
+  requireRange("quality_good_rotation_deg", good_rotation_deg, 0.0, 180.0);
+  requireRange("quality_usable_rotation_deg", usable_rotation_deg, 0.0, 180.0);
+  requireRange("quality_good_translation_cm", good_translation_cm, 0.0, 1e5);
+  requireRange("quality_usable_translation_cm", usable_translation_cm, 0.0, 1e5);
+  requireRange("quality_good_pairs", good_pairs, 0, 1e6);
+  requireRange("quality_usable_pairs", usable_pairs, 0, 1e6);
+  requireRange("quality_good_third_fraction", good_third_fraction, 0.0, 1.0 / 3.0);
+  requireRange("quality_usable_third_fraction", usable_third_fraction, 0.0, 1.0 / 3.0);
+  requireRange("quality_min_people_near", min_people_near, 0, 1e6);
+  requireRange("quality_min_people_far", min_people_far, 0, 1e6);
+  requireRange("quality_good_distinct_positions", good_distinct_positions, 0, 1e6);
+  requireRange("quality_usable_distinct_positions", usable_distinct_positions, 0, 1e6);
+  requireOrder("quality_good_rotation_deg", good_rotation_deg, "quality_usable_rotation_deg",
+               usable_rotation_deg, true);
+  requireOrder("quality_good_translation_cm", good_translation_cm, "quality_usable_translation_cm",
+               usable_translation_cm, true);
+  requireOrder("quality_good_pairs", good_pairs, "quality_usable_pairs", usable_pairs, false);
+  requireOrder("quality_good_third_fraction", good_third_fraction, "quality_usable_third_fraction",
+               usable_third_fraction, false);
+  requireOrder("quality_good_distinct_positions", good_distinct_positions,
+               "quality_usable_distinct_positions", usable_distinct_positions, false);
+}
+
+VerdictReport judgeQuality(const Coverage& coverage, const std::optional<Uncertainty>& uncertainty,
+                           const VerdictConfig& config) {
+  config.validate();
+  std::vector<Finding> findings;
+  VerdictReport report;
+  judgeCoverage(coverage, config, findings, report.missing_regions);
+  if (uncertainty && uncertainty->resamples >= 2) {
+    judgeUncertainty(*uncertainty, config, findings);
+  } else {
+    findings.push_back(
+        {Verdict::kUsable, "no uncertainty estimate yet: the verdict rests on coverage alone"});
+  }
+  std::stable_sort(findings.begin(), findings.end(),
+                   [](const Finding& a, const Finding& b) { return a.level > b.level; });
+  report.verdict = Verdict::kGood;
+  for (const Finding& f : findings) {
+    report.verdict = std::max(report.verdict, f.level);
+    report.reasons.push_back(f.text);
+  }
+  if (report.reasons.empty()) {
+    report.reasons.push_back(
+        format("every axis within +-%.3g deg / +-%.3g cm, people across the whole image, near "
+               "and far",
+               config.good_rotation_deg, config.good_translation_cm));
+  }
+  return report;
+}
+
+}  // namespace thermal_lidar_calibration

@@ -1,0 +1,223 @@
+// rostest node_hostile.test: hostile input to a running calibration_node while a generated bag
+// plays. Each case publishes what once ended or hung the node, then checks that the node is
+// still there (its ~status keeps coming, its services answer) and that it said what was wrong.
+// The cases run in order: the stamp cases while the node collects, the overlay case once it
+// has a result.
+
+#include <thermal_lidar_calibration/CalibrationStatus.h>
+
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <rosgraph_msgs/Log.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <std_srvs/Trigger.h>
+
+#include <functional>
+#include <mutex>
+#include <string>
+#include <vector>
+
+using thermal_lidar_calibration::CalibrationStatus;
+
+namespace {
+
+struct Observed {
+  std::mutex mutex;
+  CalibrationStatus last_status;
+  int status_messages = 0;
+  int overlay_images = 0;
+  std::vector<std::string> node_warnings;  // /rosout WARN+ from calibration_node
+};
+Observed g_observed;
+
+void onStatus(const CalibrationStatus::ConstPtr& msg) {
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  g_observed.last_status = *msg;
+  ++g_observed.status_messages;
+}
+
+void onOverlay(const sensor_msgs::Image::ConstPtr&) {
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  ++g_observed.overlay_images;
+}
+
+void onRosout(const rosgraph_msgs::Log::ConstPtr& msg) {
+  if (msg->level < rosgraph_msgs::Log::WARN) return;
+  if (msg->name.find("calibration_node") == std::string::npos) return;
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  g_observed.node_warnings.push_back(msg->msg);
+}
+
+bool waitFor(double timeout_s, const std::function<bool()>& predicate) {
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
+  while (ros::ok() && ros::WallTime::now() < end) {
+    {
+      std::lock_guard<std::mutex> lock(g_observed.mutex);
+      if (predicate()) return true;
+    }
+    ros::WallDuration(0.05).sleep();
+  }
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  return predicate();
+}
+
+// True when the node said something containing every one of `parts` on /rosout.
+std::function<bool()> said(std::vector<std::string> parts) {
+  return [parts] {
+    for (const auto& w : g_observed.node_warnings) {
+      bool all = true;
+      for (const auto& p : parts) all = all && w.find(p) != std::string::npos;
+      if (all) return true;
+    }
+    return false;
+  };
+}
+
+std::string warnings() {
+  std::string s;
+  for (const auto& w : g_observed.node_warnings) s += "\n  " + w;
+  return s;
+}
+
+// The node is up: ~status keeps coming and ~save answers (success or not).
+void expectAlive(const std::string& after) {
+  int before = 0;
+  {
+    std::lock_guard<std::mutex> lock(g_observed.mutex);
+    before = g_observed.status_messages;
+  }
+  EXPECT_TRUE(waitFor(5.0, [&] { return g_observed.status_messages > before + 2; }))
+      << "~status stopped after " << after;
+  std_srvs::Trigger trigger;
+  ros::ServiceClient save =
+      ros::NodeHandle().serviceClient<std_srvs::Trigger>("calibration_node/save");
+  EXPECT_TRUE(save.waitForExistence(ros::Duration(5.0))) << "~save gone after " << after;
+  EXPECT_TRUE(save.call(trigger)) << "~save did not answer after " << after;
+}
+
+sensor_msgs::Image monoImage(const ros::Time& stamp, int width, int height) {
+  sensor_msgs::Image img;
+  img.header.stamp = stamp;
+  img.header.frame_id = "thermal_optical";
+  img.width = width;
+  img.height = height;
+  img.encoding = "mono8";
+  img.step = static_cast<std::uint32_t>(width);
+  img.data.assign(static_cast<std::size_t>(img.step) * height, 0);
+  return img;
+}
+
+sensor_msgs::PointCloud2 cloudHeader(const ros::Time& stamp) {
+  sensor_msgs::PointCloud2 c;
+  c.header.stamp = stamp;
+  c.header.frame_id = "velodyne";
+  return c;
+}
+
+}  // namespace
+
+// A stamp from a sensor with an unset clock (0) or a corrupt one (4294967295, 2.2e9) beside the
+// drive's stamps: ApproximateTime threw "Duration is out of dual 32-bit range" out of the
+// callback and the node exited. Now each is dropped with a warning naming topic and stamp.
+TEST(NodeHostile, FarApartStampsDoNotEndTheNode) {
+  ros::NodeHandle nh;
+  auto image_pub = nh.advertise<sensor_msgs::Image>("thermal/image_raw", 10);
+  auto mask_pub = nh.advertise<sensor_msgs::Image>("thermal/human_mask", 10);
+  auto cloud_pub = nh.advertise<sensor_msgs::PointCloud2>("lidar/human_clusters", 10);
+  ASSERT_TRUE(waitFor(60.0, [] { return g_observed.status_messages > 0; })) << "no ~status";
+  ASSERT_TRUE(waitFor(10.0, [&] {
+    return image_pub.getNumSubscribers() > 0 && mask_pub.getNumSubscribers() > 0 &&
+           cloud_pub.getNumSubscribers() > 0;
+  }));
+  // While the bag plays (its stamps near 1.6e9 fill the synchronizer's queues), one message at a
+  // time with a stamp more than 2^31 s from them, or a stamp 0 followed by one at 2.2e9.
+  ASSERT_TRUE(waitFor(120.0, [] { return g_observed.last_status.frames_considered > 0; }))
+      << "the bag never played: " << g_observed.last_status;
+  mask_pub.publish(monoImage(ros::Time(4294967295u, 0), 640, 512));
+  ros::WallDuration(0.3).sleep();
+  image_pub.publish(monoImage(ros::Time(0, 0), 640, 512));
+  cloud_pub.publish(cloudHeader(ros::Time(2200000000u, 0)));
+  ros::WallDuration(0.3).sleep();
+  cloud_pub.publish(cloudHeader(ros::Time(4294967295u, 0)));
+  expectAlive("messages with far-apart stamps");
+  EXPECT_TRUE(waitFor(5.0, said({"/thermal/human_mask", "4294967295"}))) << warnings();
+}
+
+// ~overlay_cloud once a result exists (the overlay then decodes the full cloud): a declared
+// 2^32-1 x 2^32-1 cloud with 16 bytes spun the callback thread at 100 % (~status and ~save
+// stopped), width 1e8 with 16 bytes segfaulted, fields x, x, z (no y) ended the node. Each is
+// now refused by the ingest path's cloud check, and the overlay keeps coming.
+TEST(NodeHostile, MalformedOverlayCloudAfterTheResult) {
+  ASSERT_TRUE(waitFor(240.0, [] { return g_observed.last_status.state_name == "done"; }))
+      << "no result: " << g_observed.last_status;
+  ros::NodeHandle nh;
+  ros::Subscriber overlay_sub = nh.subscribe("calibration_node/overlay", 10, onOverlay);
+  auto image_pub = nh.advertise<sensor_msgs::Image>("thermal/image_raw", 10);
+  auto cloud_pub = nh.advertise<sensor_msgs::PointCloud2>("calibration_node/overlay_cloud", 10);
+  ASSERT_TRUE(waitFor(10.0, [&] {
+    return image_pub.getNumSubscribers() > 0 && cloud_pub.getNumSubscribers() > 0 &&
+           overlay_sub.getNumPublishers() > 0;
+  }));
+  ros::WallDuration(0.5).sleep();
+
+  sensor_msgs::PointField f;
+  f.datatype = sensor_msgs::PointField::FLOAT32;
+  f.count = 1;
+  std::vector<sensor_msgs::PointCloud2> bad;
+  {
+    sensor_msgs::PointCloud2 c = cloudHeader(ros::Time::now());
+    for (const char* name : {"x", "y", "z"}) {
+      f.name = name;
+      c.fields.push_back(f);
+      f.offset += 4;
+    }
+    c.point_step = 16;
+    c.data.assign(16, 0);
+    c.width = c.height = 0xFFFFFFFFu;
+    c.row_step = 0xFFFFFFF0u;
+    bad.push_back(c);
+    c.width = 100000000u;
+    c.height = 1;
+    c.row_step = c.width * c.point_step;
+    bad.push_back(c);
+    c.width = 1;
+    c.row_step = 16;
+    c.fields[1].name = "x";  // x, x, z
+    bad.push_back(c);
+  }
+  for (const auto& cloud : bad) {
+    int overlays = 0;
+    {
+      std::lock_guard<std::mutex> lock(g_observed.mutex);
+      overlays = g_observed.overlay_images;
+    }
+    cloud_pub.publish(cloud);
+    ros::WallDuration(0.3).sleep();
+    // The overlay decodes the cloud when the next image arrives (and someone watches ~overlay).
+    for (int k = 0; k < 3; ++k) {
+      image_pub.publish(monoImage(ros::Time::now(), 640, 512));
+      ros::WallDuration(0.2).sleep();
+    }
+    const std::string what = std::to_string(cloud.width) + " x " + std::to_string(cloud.height) +
+                             " cloud with " + std::to_string(cloud.data.size()) + " bytes";
+    EXPECT_TRUE(waitFor(10.0, [&] { return g_observed.overlay_images > overlays; }))
+        << "no ~overlay after a " << what;
+    expectAlive("a " + what + " on ~overlay_cloud");
+  }
+  EXPECT_TRUE(waitFor(5.0, said({"overlay_cloud", "row_step"}))) << warnings();
+}
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "node_hostile_test");
+  ros::NodeHandle nh;
+  ros::Subscriber status_sub = nh.subscribe("calibration_node/status", 100, onStatus);
+  ros::Subscriber rosout_sub = nh.subscribe("/rosout", 1000, onRosout);
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  const int result = RUN_ALL_TESTS();
+  spinner.stop();
+  ros::shutdown();
+  return result;
+}
