@@ -58,6 +58,10 @@ void addThermalRows(ParameterTable<DetectionParameters>& t) {
           "region area / bounding-box area at least");
   th.real("thermal_max_fill", &ThermalSegmenterConfig::max_fill, closedRange(0, 1), "",
           "region area / bounding-box area at most (a warm rectangle is not a person)", "at least thermal_min_fill");
+  th.real("thermal_split_max_aspect", &ThermalSegmenterConfig::split_max_aspect, aboveRange(0, 100), "",
+          "a region whose height / width is below this is searched for people side by side");
+  th.real("thermal_head_dip_fraction", &ThermalSegmenterConfig::head_dip_fraction, aboveRange(0, 1), "",
+          "such a region is cut where its top profile dips this fraction of its height between two heads");
 }
 
 void addLidarRows(ParameterTable<DetectionParameters>& t) {
@@ -85,6 +89,11 @@ void addLidarRows(ParameterTable<DetectionParameters>& t) {
               "nearest person (horizontal distance of its centre)", "below lidar_max_range_m");
   person.real("lidar_max_range_m", &LidarPersonConfig::max_range_m, aboveRange(0, 1000), "m",
               "farthest person (horizontal distance of its centre)");
+  person.real("lidar_min_azimuth_deg", &LidarPersonConfig::min_azimuth_deg, closedRange(-180, 180), "deg",
+              "bearing window of person centres (0 = LiDAR +x, positive towards +y): set it to the camera's field "
+              "of view so the LiDAR counts only people the camera can see", "below lidar_max_azimuth_deg");
+  person.real("lidar_max_azimuth_deg", &LidarPersonConfig::max_azimuth_deg, closedRange(-180, 180), "deg",
+              "upper end of the bearing window");
   person.real("lidar_max_object_height_m", &LidarPersonConfig::max_object_height_m, aboveRange(0, 100), "m",
               "points higher above the local ground are ignored (canopies, roofs)");
   person.real("lidar_cluster_cell_m", &LidarPersonConfig::cluster_cell_m, closedRange(0.02, 2), "m",

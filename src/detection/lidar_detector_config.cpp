@@ -24,6 +24,8 @@ void LidarGroundConfig::validate() const {
 void LidarPersonConfig::validate() const {
   requireRange("lidar_min_range_m", min_range_m, 0.0, 1000.0);
   requireRange("lidar_max_range_m", max_range_m, 0.0, 1000.0, Bound::kOpen);
+  requireRange("lidar_min_azimuth_deg", min_azimuth_deg, -180.0, 180.0);
+  requireRange("lidar_max_azimuth_deg", max_azimuth_deg, -180.0, 180.0);
   requireRange("lidar_max_object_height_m", max_object_height_m, 0.0, 100.0, Bound::kOpen);
   requireRange("lidar_cluster_cell_m", cluster_cell_m, 0.02, 2.0);
   requireRange("lidar_max_split_extent_m", max_split_extent_m, 0.0, 100.0);
@@ -41,6 +43,7 @@ void LidarPersonConfig::validate() const {
   requireRange("lidar_min_points", min_points, 1, 1000000);
   requireRange("lidar_min_points_at_10m", min_points_at_10m, 0.0, 1e6);
   checks::requireOrdered("lidar_min_range_m", min_range_m, "lidar_max_range_m", max_range_m, true);
+  checks::requireOrdered("lidar_min_azimuth_deg", min_azimuth_deg, "lidar_max_azimuth_deg", max_azimuth_deg, true);
   checks::requireOrdered("lidar_min_height_m", min_height_m, "lidar_max_height_m", max_height_m, true);
   checks::requireOrdered("lidar_min_width_m", min_width_m, "lidar_max_width_m", max_width_m, true);
 }

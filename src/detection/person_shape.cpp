@@ -11,6 +11,7 @@ const char* toString(ShapeVerdict verdict) {
   switch (verdict) {
     case ShapeVerdict::kPerson: return "person";
     case ShapeVerdict::kOutOfRange: return "out_of_range";
+    case ShapeVerdict::kOutOfView: return "out_of_view";
     case ShapeVerdict::kTooFewPoints: return "too_few_points";
     case ShapeVerdict::kTooLow: return "too_low";
     case ShapeVerdict::kTooTall: return "too_tall";
@@ -82,6 +83,8 @@ double minPersonPoints(double range_m, const LidarPersonConfig& config) {
 
 ShapeVerdict judgeShape(const PersonShape& s, const LidarPersonConfig& c) {
   if (s.range_m < c.min_range_m || s.range_m > c.max_range_m) return ShapeVerdict::kOutOfRange;
+  const double bearing_deg = std::atan2(s.centroid_xy.y(), s.centroid_xy.x()) * 180.0 / M_PI;
+  if (bearing_deg < c.min_azimuth_deg || bearing_deg > c.max_azimuth_deg) return ShapeVerdict::kOutOfView;
   if (s.top_m > c.max_height_m) return ShapeVerdict::kTooTall;
   if (s.top_m < c.min_height_m) return ShapeVerdict::kTooLow;
   if (s.bottom_m > c.max_bottom_m) return ShapeVerdict::kFloating;

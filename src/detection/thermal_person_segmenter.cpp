@@ -1,5 +1,7 @@
 #include "thermal_lidar_calibration/detection/thermal_person_segmenter.hpp"
 
+#include "thermal_regions.hpp"
+
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -57,16 +59,6 @@ FrameLevels sampleLevels(const cv::Mat& image, int step, double tail_percentile)
 
 cv::Mat squareKernel(int radius) {
   return cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * radius + 1, 2 * radius + 1));
-}
-
-bool passesShape(const ThermalSegmenterConfig& c, const cv::Mat& stats, int k, double max_area) {
-  const int area = stats.at<int>(k, cv::CC_STAT_AREA);
-  const int w = stats.at<int>(k, cv::CC_STAT_WIDTH);
-  const int h = stats.at<int>(k, cv::CC_STAT_HEIGHT);
-  if (area < c.min_area_px || area > max_area || h < c.min_height_px) return false;
-  const double aspect = static_cast<double>(h) / w;
-  const double fill = static_cast<double>(area) / (static_cast<double>(w) * h);
-  return aspect >= c.min_aspect && aspect <= c.max_aspect && fill >= c.min_fill && fill <= c.max_fill;
 }
 
 // Writes `id` where labels == label inside the component's box and returns the mean pixel
@@ -147,28 +139,55 @@ ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const 
   const int n = cv::connectedComponentsWithStats(binary, labels, stats, centroids, 8, CV_32S, cv::CCL_BBDT);
   result.components = n - 1;
   const double max_area = c.max_area_fraction * static_cast<double>(image.total());
-  std::vector<int> kept;
+  std::vector<WarmRegion> kept;
   for (int k = 1; k < n; ++k) {
-    if (passesShape(c, stats, k, max_area)) kept.push_back(k);
+    WarmRegion region;
+    region.label = k;
+    region.bbox = cv::Rect(stats.at<int>(k, cv::CC_STAT_LEFT), stats.at<int>(k, cv::CC_STAT_TOP),
+                           stats.at<int>(k, cv::CC_STAT_WIDTH), stats.at<int>(k, cv::CC_STAT_HEIGHT));
+    region.area_px = stats.at<int>(k, cv::CC_STAT_AREA);
+    region.centroid = cv::Point2d(centroids.at<double>(k, 0), centroids.at<double>(k, 1));
+    if (region.area_px < c.min_area_px) continue;  // specks: nothing to split or report
+    const std::string failure = shapeFailure(region, c, max_area);
+    // A region wider than one person for its height may hold people side by side.
+    const double aspect = static_cast<double>(region.bbox.height) / region.bbox.width;
+    if (aspect < c.split_max_aspect && failure != "too_large" && failure != "too_short") {
+      const std::vector<WarmRegion> parts = splitAtHeads(labels, region, c.head_dip_fraction);
+      if (parts.size() > 1) {
+        for (const WarmRegion& part : parts) {
+          const std::string part_failure = shapeFailure(part, c, max_area);
+          if (part_failure.empty()) {
+            kept.push_back(part);
+          } else if (part_failure != "too_small") {
+            result.rejected.push_back({part.bbox, part.area_px, part_failure});
+          }
+        }
+        continue;
+      }
+    }
+    if (failure.empty()) {
+      kept.push_back(region);
+    } else {
+      result.rejected.push_back({region.bbox, region.area_px, failure});
+    }
   }
   // Ids left to right (then top to bottom), at most 255 in an 8-bit mask.
-  std::sort(kept.begin(), kept.end(), [&](int a, int b) {
-    const double xa = centroids.at<double>(a, 0), xb = centroids.at<double>(b, 0);
-    return xa != xb ? xa < xb : centroids.at<double>(a, 1) < centroids.at<double>(b, 1);
+  std::sort(kept.begin(), kept.end(), [](const WarmRegion& a, const WarmRegion& b) {
+    return a.centroid.x != b.centroid.x ? a.centroid.x < b.centroid.x : a.centroid.y < b.centroid.y;
   });
   if (kept.size() > 255) kept.resize(255);
   for (std::size_t i = 0; i < kept.size(); ++i) {
-    const int k = kept[i];
+    const WarmRegion& region = kept[i];
     ThermalPerson person;
     person.id = static_cast<int>(i) + 1;
-    person.bbox = cv::Rect(stats.at<int>(k, cv::CC_STAT_LEFT), stats.at<int>(k, cv::CC_STAT_TOP),
-                           stats.at<int>(k, cv::CC_STAT_WIDTH), stats.at<int>(k, cv::CC_STAT_HEIGHT));
-    person.area_px = stats.at<int>(k, cv::CC_STAT_AREA);
-    person.centroid = cv::Point2d(centroids.at<double>(k, 0), centroids.at<double>(k, 1));
+    person.bbox = region.bbox;
+    person.area_px = region.area_px;
+    person.centroid = region.centroid;
     person.fill = static_cast<double>(person.area_px) / person.bbox.area();
     const auto id = static_cast<std::uint8_t>(person.id);
-    const double mean = is16 ? paintComponent<std::uint16_t>(image, labels, k, person.bbox, id, &result.mask)
-                             : paintComponent<std::uint8_t>(image, labels, k, person.bbox, id, &result.mask);
+    // The box of a part covers only its columns, so painting the label inside it paints the part.
+    const double mean = is16 ? paintComponent<std::uint16_t>(image, labels, region.label, region.bbox, id, &result.mask)
+                             : paintComponent<std::uint8_t>(image, labels, region.label, region.bbox, id, &result.mask);
     person.mean_level = result.radiometric ? mean * c.kelvin_per_count + c.kelvin_offset : mean;
     result.people.push_back(person);
   }

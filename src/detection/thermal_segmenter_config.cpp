@@ -31,6 +31,8 @@ void ThermalSegmenterConfig::validate() const {
   requireRange("thermal_max_aspect", max_aspect, 0.0, 100.0, Bound::kOpen);
   requireRange("thermal_min_fill", min_fill, 0.0, 1.0);
   requireRange("thermal_max_fill", max_fill, 0.0, 1.0);
+  requireRange("thermal_split_max_aspect", split_max_aspect, 0.0, 100.0, Bound::kOpen);
+  requireRange("thermal_head_dip_fraction", head_dip_fraction, 0.0, 1.0, Bound::kOpen);
   checks::requireOrdered("thermal_body_min_k", body_min_k, "thermal_body_max_k", body_max_k, true);
   checks::requireOrdered("thermal_min_aspect", min_aspect, "thermal_max_aspect", max_aspect, false);
   checks::requireOrdered("thermal_min_fill", min_fill, "thermal_max_fill", max_fill, false);

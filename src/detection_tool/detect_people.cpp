@@ -14,7 +14,8 @@ namespace thermal_lidar_calibration {
 namespace detection_tool {
 namespace {
 
-void segmentImage(const DetectPeopleOptions& o, const DetectionParameters& params, std::ostream& out) {
+void segmentImage(const DetectPeopleOptions& o, const DetectionParameters& params, std::ostream& out,
+                  std::ostream& err) {
   detection::ThermalSegmenterConfig config = params.thermal;
   if (o.kelvin_per_count) config.kelvin_per_count = *o.kelvin_per_count;
   if (o.kelvin_offset) config.kelvin_offset = *o.kelvin_offset;
@@ -28,6 +29,16 @@ void segmentImage(const DetectPeopleOptions& o, const DetectionParameters& param
         << p.bbox.height << " area " << p.area_px << '\n';
   }
   if (result.people.empty()) out << "no person found\n";
+  if (o.explain) {
+    err << std::fixed << std::setprecision(2) << (result.radiometric ? "radiometric" : "relative")
+        << ": background " << result.background_level << ", person band [" << result.threshold_low << ", "
+        << result.threshold_high << "]" << (result.radiometric ? " K" : "") << "; " << result.components
+        << " warm regions\n";
+    for (const auto& r : result.rejected) {
+      err << "not a person (" << r.reason << "): bbox " << r.bbox.x << ' ' << r.bbox.y << ' ' << r.bbox.width << ' '
+          << r.bbox.height << " area " << r.area_px << '\n';
+    }
+  }
 }
 
 void detectInCloud(const DetectPeopleOptions& o, const DetectionParameters& params, std::ostream& out,
@@ -65,7 +76,7 @@ void runDetectPeople(const DetectPeopleOptions& o, std::ostream& out, std::ostre
   const DetectionParameters params =
       o.config.empty() ? DetectionParameters{} : loadDetectionParameters(*makeYamlParameterSource(o.config));
   if (!o.image.empty()) {
-    segmentImage(o, params, out);
+    segmentImage(o, params, out, err);
   } else {
     detectInCloud(o, params, out, err);
   }

@@ -26,7 +26,8 @@ double parseNumber(const std::string& flag, const std::string& text) {
 
 const char* detectPeopleUsage() {
   return "usage: detect_people --image IMG --mask-out MASK.png [--kelvin-per-count K] [--kelvin-offset O]\n"
-         "                     [--flip none|vertical|horizontal|both] [--overlay-out VIEW.png] [--config PARAMS.yaml]\n"
+         "                     [--flip none|vertical|horizontal|both] [--overlay-out VIEW.png] [--explain]\n"
+         "                     [--config PARAMS.yaml]\n"
          "       detect_people --cloud CLOUD.pcd|CLOUD.bin --clusters-out OUT.pcd [--view-out VIEW.png] [--explain]\n"
          "                     [--config PARAMS.yaml]\n";
 }
@@ -68,8 +69,8 @@ std::optional<DetectPeopleOptions> parseDetectPeopleArgs(const std::vector<std::
   if (image == cloud) throw UsageError("give exactly one of --image and --cloud");
   if (image && o.mask_out.empty()) throw UsageError("--image needs --mask-out MASK.png");
   if (cloud && o.clusters_out.empty()) throw UsageError("--cloud needs --clusters-out OUT.pcd");
-  if (image && (!o.clusters_out.empty() || !o.view_out.empty() || o.explain)) {
-    throw UsageError("--clusters-out, --view-out and --explain go with --cloud");
+  if (image && (!o.clusters_out.empty() || !o.view_out.empty())) {
+    throw UsageError("--clusters-out and --view-out go with --cloud");
   }
   if (cloud && (!o.mask_out.empty() || !o.overlay_out.empty() || o.kelvin_per_count || o.kelvin_offset ||
                 o.flip != detection::ImageFlip::kNone)) {

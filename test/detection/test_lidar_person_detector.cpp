@@ -189,7 +189,7 @@ TEST(LidarPersonDetector, SparseVlp16PersonAtRangeCountsAreScaledWithRange) {
   EXPECT_TRUE(detectedOwners(scan, strict).empty());
 }
 
-TEST(LidarPersonDetector, RangeLimits) {
+TEST(LidarPersonDetector, RangeAndBearingLimits) {
   const Terrain flat = Terrain::flat();
   const CraftedScan scan = hdl32(flat, {personAt(flat, 6.0, 0.0, 1), personAt(flat, 0.0, 24.0, 2)});
   EXPECT_EQ(detectedOwners(scan), (std::vector<int>{1, 2}));
@@ -199,6 +199,11 @@ TEST(LidarPersonDetector, RangeLimits) {
   LidarDetectorConfig far;
   far.person.min_range_m = 10.0;
   EXPECT_EQ(detectedOwners(scan, far), std::vector<int>{2});
+  // A camera looking forward (+x) with a 50 deg field of view: the person on the left (+y) is out.
+  LidarDetectorConfig ahead;
+  ahead.person.min_azimuth_deg = -30.0;
+  ahead.person.max_azimuth_deg = 30.0;
+  EXPECT_EQ(detectedOwners(scan, ahead), std::vector<int>{1});
 }
 
 TEST(LidarPersonDetector, DeterministicAndIndependentOfPointOrder) {

@@ -70,6 +70,28 @@ TEST(ThermalPersonSegmenter, TwoPeopleGetDistinctIdsLeftToRight) {
   EXPECT_EQ(result.mask.at<std::uint8_t>(100 + 75, 420), 2);
 }
 
+TEST(ThermalPersonSegmenter, PeopleSideBySideInOneWarmRegionAreSplitAtTheirHeads) {
+  cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 13);
+  // Torsos 34 px wide, centres 32 px apart: one connected warm region.
+  drawPerson(image, 300, 150, 140, 307.0, 301.0);
+  drawPerson(image, 332, 156, 134, 307.0, 301.0);
+  ThermalSegmenterConfig no_split;
+  no_split.split_max_aspect = 0.01;
+  const auto merged = ThermalPersonSegmenter(no_split).segment(image);
+  ASSERT_EQ(merged.people.size(), 1u);
+  const auto result = ThermalPersonSegmenter().segment(image);
+  ASSERT_EQ(result.people.size(), 2u);
+  EXPECT_NEAR(result.people[0].centroid.x, 300, 6);
+  EXPECT_NEAR(result.people[1].centroid.x, 332, 6);
+  EXPECT_GT(result.people[0].bbox.height, 120);
+  EXPECT_EQ(result.people[0].area_px + result.people[1].area_px,
+            cv::countNonZero(result.mask));
+  // One person alone is never cut (its shoulders are not a second head).
+  cv::Mat one = thermalBackground(kFrame, 288.0, 0.1, 14);
+  drawPerson(one, 300, 150, 140, 307.0, 301.0);
+  EXPECT_EQ(ThermalPersonSegmenter().segment(one).people.size(), 1u);
+}
+
 TEST(ThermalPersonSegmenter, AnimalAtBodyTemperatureIsNotAPerson) {
   cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 5);
   drawAnimal(image, 300, 300, 90, 307.0);  // 90 px long, ~50 px high: height / width < 1

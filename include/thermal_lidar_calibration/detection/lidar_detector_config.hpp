@@ -23,6 +23,11 @@ struct LidarGroundConfig {
 struct LidarPersonConfig {
   double min_range_m = 1.0;       // lidar_min_range_m: nearest person centre (horizontal), m; [0, 1000], below lidar_max_range_m
   double max_range_m = 30.0;      // lidar_max_range_m: farthest person centre (horizontal), m; (0, 1000]
+  // Bearing window of person centres, deg in the levelled sensor frame (0 = +x, positive towards
+  // +y). Set it to the camera's field of view (with a margin) so that the LiDAR counts only the
+  // people the camera can see: the frame gate compares the two counts.
+  double min_azimuth_deg = -180.0;  // lidar_min_azimuth_deg: deg; [-180, 180], below lidar_max_azimuth_deg
+  double max_azimuth_deg = 180.0;   // lidar_max_azimuth_deg: deg; [-180, 180]
   double max_object_height_m = 3.0;  // lidar_max_object_height_m: points higher above the ground are ignored, m; (0, 100]
   double cluster_cell_m = 0.2;    // lidar_cluster_cell_m: 2-D grid cell joining above-ground points into objects, m; [0.02, 2]
   double max_split_extent_m = 6.0;// lidar_max_split_extent_m: objects too big for one person but at most this wide and deep are searched for people standing close together, m; [0, 100]

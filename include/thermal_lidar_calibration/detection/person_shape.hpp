@@ -30,6 +30,7 @@ struct PersonShape {
 enum class ShapeVerdict {
   kPerson,
   kOutOfRange,
+  kOutOfView,    // outside the bearing window
   kTooFewPoints,
   kTooLow,
   kTooTall,

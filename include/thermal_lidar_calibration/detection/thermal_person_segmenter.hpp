@@ -11,6 +11,7 @@
 
 #include <opencv2/core.hpp>
 
+#include <string>
 #include <vector>
 
 namespace thermal_lidar_calibration {
@@ -25,6 +26,13 @@ struct ThermalPerson {
   double mean_level = 0.0; // mean pixel value inside the mask: kelvin if radiometric, else raw
 };
 
+// A warm region at least min_area_px large that failed a shape filter, for tuning.
+struct RejectedRegion {
+  cv::Rect bbox;
+  int area_px = 0;
+  std::string reason;  // "too_large", "too_short", "too_squat", "too_thin", "too_sparse", "too_full"
+};
+
 struct ThermalSegmentation {
   cv::Mat mask;  // CV_8UC1, same size as the image: 0 = background, ids 1..n (n <= 255)
   std::vector<ThermalPerson> people;  // in id order
@@ -33,6 +41,7 @@ struct ThermalSegmentation {
   double threshold_low = 0;     // a person pixel is in [threshold_low, threshold_high]
   double threshold_high = 0;
   int components = 0;           // connected components before the shape filters
+  std::vector<RejectedRegion> rejected;  // regions of at least min_area_px that failed a filter
 };
 
 class ThermalPersonSegmenter {

@@ -39,13 +39,19 @@ struct ThermalSegmenterConfig {
   int close_radius_px = 1;  // thermal_close_radius_px: closing fills small holes and seams; integer [0, 10]
 
   // --- Shape filters per connected component (8-connected).
-  int min_area_px = 40;             // thermal_min_area_px: pixels; integer [1, 10000000]
-  double max_area_fraction = 0.25;  // thermal_max_area_fraction: of the image area; (0, 1]
-  int min_height_px = 10;           // thermal_min_height_px: bounding-box height, px; integer [1, 100000]
+  int min_area_px = 80;             // thermal_min_area_px: pixels (a person ~45 m from a FLIR A65); integer [1, 10000000]
+  double max_area_fraction = 0.1;   // thermal_max_area_fraction: of the image area (a person ~4 m from a FLIR A65); (0, 1]
+  int min_height_px = 16;           // thermal_min_height_px: bounding-box height, px (a person ~85 m from a FLIR A65); integer [1, 100000]
   double min_aspect = 1.1;          // thermal_min_aspect: bounding-box height / width; (0, 100]
   double max_aspect = 5.5;          // thermal_max_aspect: height / width; (0, 100], >= thermal_min_aspect
   double min_fill = 0.30;           // thermal_min_fill: area / bounding-box area; [0, 1]
   double max_fill = 0.95;           // thermal_max_fill: area / bounding-box area; [0, 1], >= thermal_min_fill
+
+  // --- People side by side in one region: a region whose height / width is below
+  // split_max_aspect is cut where its top profile dips head_dip_fraction of its height between
+  // two heads; each part then passes the shape filters on its own.
+  double split_max_aspect = 3.0;     // thermal_split_max_aspect: one person standing is ~3-4, two side by side ~2; (0, 100]
+  double head_dip_fraction = 0.08;   // thermal_head_dip_fraction: of the region's height; (0, 1]
 
   void validate() const;  // throws std::invalid_argument naming key, value and range
 };

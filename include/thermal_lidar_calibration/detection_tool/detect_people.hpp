@@ -2,7 +2,8 @@
 // detect_people: the person detectors on single files, for trying and tuning them (contract:
 // docs/INTERFACE.md, "Raw sensor front-end").
 //   detect_people --image IMG --mask-out MASK.png [--kelvin-per-count K] [--kelvin-offset O]
-//                 [--flip none|vertical|horizontal|both] [--overlay-out VIEW.png] [--config PARAMS.yaml]
+//                 [--flip none|vertical|horizontal|both] [--overlay-out VIEW.png] [--explain]
+//                 [--config PARAMS.yaml]
 //   detect_people --cloud CLOUD --clusters-out OUT.pcd [--view-out VIEW.png] [--explain] [--config PARAMS.yaml]
 // stdout: one line per person, or "no person found"; exit 0. Bad input: one line on stderr,
 // exit 1. A bad command line: one line and the usage on stderr, exit 2.
@@ -28,7 +29,7 @@ struct DetectPeopleOptions {
   std::string cloud;         // --cloud
   std::string clusters_out;  // --clusters-out
   std::string view_out;      // --view-out: bird's-eye view of the scan
-  bool explain = false;      // --explain: print the rejected person-high objects to stderr
+  bool explain = false;      // --explain: print the levels and the rejected regions / objects to stderr
   std::string config;        // --config
 };
 
