@@ -3,9 +3,9 @@
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "calibration_node");
-  ros::NodeHandle private_nh("~");  // outlives the node: a start-up error can still be logged
+  ros::NodeHandle nh, private_nh("~");  // outlive the node: a start-up error can still be logged
   try {
-    thermal_lidar_calibration::ros_io::CalibrationNode node(private_nh);
+    thermal_lidar_calibration::ros_io::CalibrationNode node(nh, private_nh);
     ros::spin();
   } catch (const std::exception& e) {
     ROS_FATAL("calibration_node cannot start: %s", e.what());

@@ -7,6 +7,16 @@
 namespace thermal_lidar_calibration {
 namespace ros_io {
 
+const char* stateName(std::uint8_t state) {
+  switch (state) {
+    case CalibrationStatus::COLLECTING: return "collecting";
+    case CalibrationStatus::OPTIMIZING: return "optimizing";
+    case CalibrationStatus::DONE: return "done";
+    case CalibrationStatus::FAILED: return "failed";
+  }
+  return "unknown";
+}
+
 std::string CalibrationNode::progressLine() const {
   std::ostringstream s;
   const std::size_t kept = builder_ ? builder_->pairs().size() : 0;
@@ -22,7 +32,7 @@ std::string CalibrationNode::progressLine() const {
   return s.str();
 }
 
-void CalibrationNode::setState(NodeState state, const std::string& message) {
+void CalibrationNode::setState(std::uint8_t state, const std::string& message) {
   state_ = state;
   state_message_ = message;
   publishStatus();
@@ -31,12 +41,12 @@ void CalibrationNode::setState(NodeState state, const std::string& message) {
 void CalibrationNode::logProgress(bool force) {
   const ros::WallTime now = ros::WallTime::now();
   if (!force && (now - last_progress_log_).toSec() < params_.progress_log_period_s) return;
-  if (state_ == NodeState::kCollecting || state_ == NodeState::kFailed) {
+  if (state_ == CalibrationStatus::COLLECTING || state_ == CalibrationStatus::FAILED) {
     const std::uint64_t considered = builder_ ? builder_->counts().considered() : 0;
     if (!force && considered == last_logged_considered_) return;  // nothing new
     last_logged_considered_ = considered;
-    ROS_INFO("%s: %s", toString(state_), progressLine().c_str());
-  } else if (state_ == NodeState::kOptimizing) {
+    ROS_INFO("%s: %s", stateName(state_), progressLine().c_str());
+  } else if (state_ == CalibrationStatus::OPTIMIZING) {
     const auto p = worker_.progress();
     if (!p) return;
     ROS_INFO("optimizing: %s generation %d/%d, best loss %.3f px, %llu evaluations",
@@ -51,8 +61,8 @@ void CalibrationNode::logProgress(bool force) {
 void CalibrationNode::publishStatus() {
   CalibrationStatus msg;
   msg.header.stamp = ros::Time::now();
-  msg.state = static_cast<std::uint8_t>(state_);
-  msg.state_name = toString(state_);
+  msg.state = state_;
+  msg.state_name = stateName(state_);
   msg.message = state_message_;
   msg.pairs_required = static_cast<std::uint32_t>(params_.core.pairs_required);
   if (builder_) {
@@ -67,7 +77,7 @@ void CalibrationNode::publishStatus() {
     msg.rejected_bad_message = static_cast<std::uint32_t>(c[GateDecision::kBadMessage]);
     msg.nonfinite_points_dropped = static_cast<std::uint32_t>(c.nonfinite_points_dropped);
   }
-  if (state_ == NodeState::kOptimizing) {
+  if (state_ == CalibrationStatus::OPTIMIZING) {
     if (const auto p = worker_.progress()) {
       msg.stage = p->stage;
       msg.generation = static_cast<std::uint32_t>(p->generation);

@@ -22,6 +22,7 @@
 #include <sensor_msgs/CameraInfo.h>
 #include <std_srvs/Trigger.h>
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <set>
@@ -30,42 +31,56 @@
 namespace thermal_lidar_calibration {
 namespace ros_io {
 
-enum class NodeState : std::uint8_t { kCollecting = 0, kOptimizing = 1, kDone = 2, kFailed = 3 };
-const char* toString(NodeState state);
+// The state names of CalibrationStatus::state (COLLECTING, OPTIMIZING, DONE, FAILED).
+const char* stateName(std::uint8_t state);
 
+// One class for the executable (calibration_node) and the nodelet (CalibrationNodelet). Its
+// member functions live in one file per responsibility:
+//   calibration_node.cpp           construction: parameters, subscriptions, services, timer
+//   calibration_node_ingest.cpp    intrinsics, the synchronized frames, the dataset (~resume)
+//   calibration_node_result.cpp    the optimization run and its result (tf, file, overlay)
+//   calibration_node_services.cpp  ~calibrate, ~reset, ~save
+//   calibration_node_status.cpp    state, ~status and the progress log
 class CalibrationNode {
  public:
-  // Reads the parameters (throws std::invalid_argument on a bad one), reloads the dataset with
-  // ~resume, then subscribes and advertises.
-  explicit CalibrationNode(ros::NodeHandle private_nh);
+  // Reads the parameters of `private_nh` (throws std::invalid_argument on a bad one), reloads
+  // the dataset with ~resume, then subscribes the inputs on `nh` (remap them) and advertises
+  // ~status, ~overlay and the services on `private_nh`. Callbacks run on the handles'
+  // callback queue: one thread at a time (the nodelet passes its single-threaded handles).
+  CalibrationNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
   ~CalibrationNode();
 
  private:
   // Each distinct bad-frame fault is logged at most once per this period (fault_throttle_).
   static constexpr double kFaultLogPeriodS = 5.0;
 
+  // calibration_node.cpp
   void readParameters();
-  void resumeDataset();
   void createBuilder(const CameraModel& camera, const std::string& source);
+  void onTimer(const ros::WallTimerEvent& event);
 
-  // Callbacks (main thread).
+  // calibration_node_ingest.cpp (callbacks, main thread)
+  void resumeDataset();
   void onImage(const sensor_msgs::Image::ConstPtr& msg);
   void onMask(const sensor_msgs::Image::ConstPtr& msg);
   void onClusters(const sensor_msgs::PointCloud2::ConstPtr& msg);
   void onCameraInfo(const sensor_msgs::CameraInfo::ConstPtr& msg);
   void onFrame(const sensor_msgs::Image::ConstPtr& image, const sensor_msgs::Image::ConstPtr& mask,
                const sensor_msgs::PointCloud2::ConstPtr& clusters);
-  void onTimer(const ros::WallTimerEvent& event);
-  bool onCalibrate(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
-  bool onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
-  bool onSave(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
 
-  // Lifecycle.
+  // calibration_node_result.cpp
   std::string startOptimization(const std::string& why);  // "" when started, else the refusal
   void handleOutcome(CalibrationWorker::Outcome outcome);
   void publishResult();
   void writeResult();
-  void setState(NodeState state, const std::string& message);
+
+  // calibration_node_services.cpp
+  bool onCalibrate(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  bool onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  bool onSave(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+
+  // calibration_node_status.cpp
+  void setState(std::uint8_t state, const std::string& message);  // CalibrationStatus::*
   void logProgress(bool force);
   void publishStatus();
   std::string progressLine() const;
@@ -93,7 +108,7 @@ class CalibrationNode {
 
   CalibrationWorker worker_;
   bool discard_outcome_ = false;  // set by ~reset while a run is stopping
-  NodeState state_ = NodeState::kCollecting;
+  std::uint8_t state_ = CalibrationStatus::COLLECTING;
   std::string state_message_;
   std::optional<CalibrationResult> result_;
   std::vector<double> result_stamps_s_;

@@ -1,0 +1,134 @@
+// calibration_node: intrinsics, the synchronized frames through the shared ingest path
+// (FrameSynchronizer -> DatasetBuilder), the dataset bag and ~resume.
+
+#include "thermal_lidar_calibration/node/calibration_node.hpp"
+
+#include "thermal_lidar_calibration/ros/msg_conversion.hpp"
+
+#include <unistd.h>
+
+#include <stdexcept>
+
+namespace thermal_lidar_calibration {
+namespace ros_io {
+
+void CalibrationNode::resumeDataset() {
+  if (::access(params_.dataset_bag.c_str(), F_OK) != 0) {
+    ROS_INFO("~resume: %s does not exist yet; starting a new dataset", params_.dataset_bag.c_str());
+    return;
+  }
+  if (recoverDatasetBag(params_.dataset_bag)) {
+    ROS_WARN("~resume: %s was interrupted during a write; restored it from its journal",
+             params_.dataset_bag.c_str());
+  }
+  DatasetBagContents contents = readDatasetBag(params_.dataset_bag);  // throws runtime_error
+  for (const auto& error : contents.errors) ROS_WARN("~resume: skipped a stored pair: %s", error.c_str());
+  if (!builder_) {
+    if (!contents.camera) {
+      throw std::runtime_error("~resume: " + params_.dataset_bag +
+                               " holds no camera_info; set ~camera_info_file");
+    }
+    camera_info_msg_ = cameraInfoFromModel(*contents.camera);
+    createBuilder(*contents.camera, params_.dataset_bag);
+  }
+  for (std::size_t i = 0; i < contents.pairs.size(); ++i) {
+    // The exact header stamp, as onFrame keys live frames (not ros::Time(pair.stamp_s): a double
+    // at epoch times has ~240 ns resolution, so the nanoseconds would not round-trip).
+    stored_stamps_ns_.insert(static_cast<long long>(contents.pair_stamps_ns[i]));
+    builder_->addExistingPair(std::move(contents.pairs[i]));  // throws if the camera size differs
+  }
+  pairs_resumed_ = builder_->pairs().size();
+  camera_frame_ = contents.camera_frame;
+  lidar_frame_ = contents.lidar_frame;
+  ROS_INFO("~resume: reloaded %zu pairs from %s", pairs_resumed_, params_.dataset_bag.c_str());
+}
+
+void CalibrationNode::onCameraInfo(const sensor_msgs::CameraInfo::ConstPtr& msg) {
+  if (builder_) return;  // intrinsics are cached from the first valid message
+  try {
+    const CameraModel camera = cameraModelFromMsg(*msg);
+    camera_info_msg_ = *msg;
+    createBuilder(camera, camera_info_topic_);
+    camera_info_sub_.shutdown();
+  } catch (const std::invalid_argument& e) {
+    ROS_WARN_THROTTLE(5.0, "%s: %s", camera_info_topic_.c_str(), e.what());
+  }
+}
+
+void CalibrationNode::onImage(const sensor_msgs::Image::ConstPtr& msg) {
+  synchronizer_->addImage(msg);
+  overlay_->onImage(msg);
+}
+
+void CalibrationNode::onMask(const sensor_msgs::Image::ConstPtr& msg) {
+  synchronizer_->addMask(msg);
+  overlay_->onMask(msg);
+}
+
+void CalibrationNode::onClusters(const sensor_msgs::PointCloud2::ConstPtr& msg) {
+  synchronizer_->addClusters(msg);
+  overlay_->onClusters(msg);
+}
+
+void CalibrationNode::onFrame(const sensor_msgs::Image::ConstPtr& image,
+                              const sensor_msgs::Image::ConstPtr& mask,
+                              const sensor_msgs::PointCloud2::ConstPtr& clusters) {
+  if (!builder_) {
+    ROS_WARN_THROTTLE(5.0, "no intrinsics yet: waiting for %s (or set ~camera_info_file)",
+                      camera_info_topic_.c_str());
+    return;
+  }
+  if (state_ == CalibrationStatus::OPTIMIZING || state_ == CalibrationStatus::DONE) return;
+  if (stored_stamps_ns_.count(static_cast<long long>(image->header.stamp.toNSec())) != 0) {
+    ROS_DEBUG("frame %.3f is already in the dataset", image->header.stamp.toSec());
+    return;
+  }
+  const std::uint64_t nonfinite_before = builder_->counts().nonfinite_points_dropped;
+  const OfferOutcome outcome = builder_->offer([&] {
+    return decodeFrame(*image, *mask, *clusters, image_topic_, mask_topic_, clusters_topic_);
+  });
+  const std::uint64_t nonfinite = builder_->counts().nonfinite_points_dropped - nonfinite_before;
+  if (nonfinite > 0) {
+    ROS_WARN_THROTTLE(kFaultLogPeriodS, "%s: dropped %llu NaN/inf points of the cloud at %.3f (%llu so far)",
+                      clusters_topic_.c_str(), static_cast<unsigned long long>(nonfinite),
+                      clusters->header.stamp.toSec(),
+                      static_cast<unsigned long long>(builder_->counts().nonfinite_points_dropped));
+  }
+  if (outcome.decision == GateDecision::kBadMessage) {
+    // Decoder errors name their topic; size checks against camera_info concern the mask.
+    const std::string where =
+        outcome.error.find('/') != std::string::npos ? "" : " (" + mask_topic_ + ")";
+    if (fault_throttle_.shouldReport(outcome.error)) {  // each kind of fault, throttled
+      ROS_WARN("bad frame at %.3f%s: %s (%llu bad so far; repeats of this fault are shown at most "
+               "every %.0f s)",
+               image->header.stamp.toSec(), where.c_str(), outcome.error.c_str(),
+               static_cast<unsigned long long>(builder_->counts()[GateDecision::kBadMessage]),
+               kFaultLogPeriodS);
+    }
+    return;
+  }
+  if (outcome.decision != GateDecision::kKept) {
+    ROS_DEBUG("frame %.3f: %s (mask %d people, clusters %d)", image->header.stamp.toSec(),
+              toString(outcome.decision), outcome.mask_people, outcome.cluster_people);
+    return;
+  }
+  stored_stamps_ns_.insert(static_cast<long long>(image->header.stamp.toNSec()));
+  camera_frame_ = builder_->cameraFrame();
+  lidar_frame_ = builder_->lidarFrame();
+  if (dataset_writer_) {
+    try {
+      dataset_writer_->write(*image, *mask, *clusters, *camera_info_msg_);
+    } catch (const std::exception& e) {
+      ROS_ERROR_THROTTLE(5.0, "kept pair not recorded: %s", e.what());
+    }
+  }
+  ROS_DEBUG("kept frame %.3f (%d people): %s", image->header.stamp.toSec(), outcome.mask_people,
+            progressLine().c_str());
+  if (static_cast<int>(builder_->pairs().size()) >= params_.core.pairs_required &&
+      state_ == CalibrationStatus::COLLECTING) {
+    startOptimization("~pairs_required reached");
+  }
+}
+
+}  // namespace ros_io
+}  // namespace thermal_lidar_calibration

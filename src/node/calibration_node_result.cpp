@@ -1,0 +1,89 @@
+// calibration_node: the optimization run on the worker thread and its result (/tf_static,
+// the result file, the overlay estimate).
+
+#include "thermal_lidar_calibration/node/calibration_node.hpp"
+
+#include "thermal_lidar_calibration/app/result_file.hpp"
+#include "thermal_lidar_calibration/app/static_transform_command.hpp"
+
+namespace thermal_lidar_calibration {
+namespace ros_io {
+
+std::string CalibrationNode::startOptimization(const std::string& why) {
+  if (state_ == CalibrationStatus::OPTIMIZING) return "refused: already optimizing";
+  if (worker_.busy()) return "refused: the previous optimization is still stopping; try again";
+  if (!builder_) return "refused: no camera intrinsics yet (" + camera_info_topic_ + ")";
+  const std::size_t n = builder_->pairs().size();
+  if (static_cast<int>(n) < params_.min_pairs_to_calibrate) {
+    return "refused: only " + std::to_string(n) + " pairs kept, at least " +
+           std::to_string(params_.min_pairs_to_calibrate) + " needed (~min_pairs_to_calibrate)";
+  }
+  result_stamps_s_.clear();
+  for (const auto& pair : builder_->pairs()) result_stamps_s_.push_back(pair.stamp_s);
+  discard_outcome_ = false;
+  worker_.start(builder_->camera(), builder_->pairs(), params_.core.calibration);
+  logProgress(true);
+  setState(CalibrationStatus::OPTIMIZING, "optimizing " + std::to_string(n) + " pairs (" + why + ")");
+  ROS_INFO("optimizing %zu pairs on a worker thread (%s)", n, why.c_str());
+  return "";
+}
+
+void CalibrationNode::handleOutcome(CalibrationWorker::Outcome outcome) {
+  if (discard_outcome_) {
+    discard_outcome_ = false;
+    return;
+  }
+  if (!outcome.result) {
+    ROS_ERROR("calibration failed: %s", outcome.error.c_str());
+    setState(CalibrationStatus::FAILED, "calibration failed: " + outcome.error);
+    return;
+  }
+  if (outcome.result->stopped) {
+    setState(CalibrationStatus::COLLECTING, "optimization stopped");
+    return;
+  }
+  result_ = std::move(outcome.result);
+  writeResult();
+  overlay_->setEstimate(result_->extrinsic);
+  result_published_ = false;
+  if ((ros::WallTime::now() - start_time_).toSec() >= params_.tf_check_wait_s) publishResult();
+  setState(CalibrationStatus::DONE, "done: loss " + std::to_string(result_->loss) + " px");
+}
+
+void CalibrationNode::publishResult() {
+  CalibratedTfPublisher::Decision decision;
+  tf_publisher_->publish(result_->extrinsic, lidar_frame_, camera_frame_, &decision);
+  published_child_ = decision.child_frame;
+  result_published_ = true;
+  if (!decision.reason.empty()) {
+    ROS_WARN("%s: the result is published as '%s' -> '%s' instead, never as a second parent",
+             decision.reason.c_str(), lidar_frame_.c_str(), published_child_.c_str());
+  }
+  const Eigen::Matrix3d R = result_->extrinsic.rotationMatrix();
+  const Eigen::Vector3d& t = result_->extrinsic.translation;
+  ROS_INFO("result (p_%s = R p_%s + t): R = [%.6f %.6f %.6f; %.6f %.6f %.6f; %.6f %.6f %.6f], "
+           "t = [%.4f %.4f %.4f] m, loss %.3f px on %zu/%zu pairs, %.1f s; published on "
+           "/tf_static; equivalent: %s",
+           camera_frame_.c_str(), lidar_frame_.c_str(), R(0, 0), R(0, 1), R(0, 2), R(1, 0),
+           R(1, 1), R(1, 2), R(2, 0), R(2, 1), R(2, 2), t.x(), t.y(), t.z(), result_->loss,
+           result_->pairs_used, result_->pairs_collected, result_->seconds,
+           staticTransformPublisherCommand(result_->extrinsic, lidar_frame_, published_child_).c_str());
+}
+
+void CalibrationNode::writeResult() {
+  ResultContext context;
+  context.lidar_frame = lidar_frame_;
+  context.camera_frame = camera_frame_;
+  context.source = "live";
+  context.pair_stamps_s = result_stamps_s_;
+  context.parameters = params_.core;
+  try {
+    writeResultFile(params_.output_file, *result_, context);
+    ROS_INFO("result written to %s", params_.output_file.c_str());
+  } catch (const std::exception& e) {
+    ROS_ERROR("%s", e.what());
+  }
+}
+
+}  // namespace ros_io
+}  // namespace thermal_lidar_calibration
