@@ -10,6 +10,7 @@ void DriftConfig::validate() const {
   requireRange("monitor_period_pairs", period_pairs, 1, window_pairs);
   requireRange("monitor_confirm_windows", confirm_windows, 1, 1000);
   requireRange("monitor_significance", significance, 0.0, 0.5, true);
+  requireRange("monitor_min_loss_ratio", min_loss_ratio, 1.0, 1e6);
   requireRange("monitor_min_rotation_deg", min_rotation_deg, 0.0, 180.0);
   requireRange("monitor_min_translation_cm", min_translation_cm, 0.0, 1e5);
   requireRange("monitor_folds", folds, 2, window_pairs / 3);

@@ -85,8 +85,9 @@ DriftWindowTest testDriftWindow(const CameraModel& camera,
   out.loss_reference = nearest.loss(reference, full.used);
   out.loss_fit = nearest.loss(full.estimate, full.used);
   out.image_shift_px = meanImageShiftPx(camera, window, full.used, full.estimate, reference);
-  out.large = out.change.angle_deg >= drift.min_rotation_deg ||
-              out.change.distance_cm >= drift.min_translation_cm;
+  out.large = out.loss_reference >= drift.min_loss_ratio * out.loss_fit &&
+              (out.change.angle_deg >= drift.min_rotation_deg ||
+               out.change.distance_cm >= drift.min_translation_cm);
 
   // Cross-fitting: fold k = every folds-th candidate in time order, so each fold spans the
   // whole window (a change inside the window shows in every fold alike).
@@ -99,8 +100,6 @@ DriftWindowTest testDriftWindow(const CameraModel& camera,
     }
     const LocalFit fold = fitLocally(nearest, refinement, reference, train, calibration);
     out.evaluations += fold.evaluations;
-    const double shift = meanImageShiftPx(camera, window, full.used, fold.estimate, full.estimate);
-    out.fold_shift_px += shift * shift / drift.folds;
     for (std::size_t i : held_out) {
       const double at_reference = bilinear.pairLoss(i, reference);
       const double at_fit = bilinear.pairLoss(i, fold.estimate);
@@ -108,7 +107,6 @@ DriftWindowTest testDriftWindow(const CameraModel& camera,
       differences.push_back(at_reference - at_fit);
     }
   }
-  out.fold_shift_px = std::sqrt(out.fold_shift_px);
   const SignedRankResult test = signedRankTestGreater(differences);
   out.held_out_pairs = test.n;
   out.p_value = test.p_value;

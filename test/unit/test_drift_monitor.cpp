@@ -1,0 +1,218 @@
+// The drift watch on streams of synthetic pairs (test/support): a rig that stays put must stay
+// OK (clean and with realistic mask and range noise), a 0.5 deg turn or a 3 cm shift mid-stream
+// must be confirmed within 30 pairs with the new extrinsic near the new truth, an accepted
+// update makes the new extrinsic the reference, and the same input gives the same verdicts.
+#include "thermal_lidar_calibration/core/drift_monitor.hpp"
+
+#include "../support/synthetic_pairs.hpp"
+#include "thermal_lidar_calibration/synthetic/noise_model.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <optional>
+#include <random>
+#include <vector>
+
+using namespace thermal_lidar_calibration;
+using test_support::fieldsafeCamera;
+using test_support::fieldsafeTruth;
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+// The truth after a bump: turned by `degrees` about `axis` and shifted by `shift_m`, both in
+// the camera frame (as make_synthetic_bag --extrinsic-change does).
+Extrinsic bumped(const Extrinsic& e, const Eigen::Vector3d& axis, double degrees,
+                 const Eigen::Vector3d& shift_m) {
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(degrees * kDeg, axis.normalized()).toRotationMatrix();
+  return Extrinsic::fromRotationMatrix(turn * e.rotationMatrix(), e.translation + shift_m);
+}
+
+// `count` pairs seen with `truth`; with `noisy`, the realistic preset's mask edges (+-2 px) and
+// 2 cm range noise.
+std::vector<CalibrationPair> pairsSeenWith(const Extrinsic& truth, int count, std::uint64_t seed,
+                                           bool noisy) {
+  test_support::SyntheticPairsOptions o;
+  o.pairs = count;
+  o.seed = seed;
+  std::vector<CalibrationPair> pairs = test_support::makeSyntheticPairs(fieldsafeCamera(), truth, o);
+  if (!noisy) return pairs;
+  std::mt19937_64 rng(seed + 1000);
+  std::normal_distribution<float> range_noise(0.0f, 0.02f);
+  for (CalibrationPair& p : pairs) {
+    synthetic::perturbMaskEdges(p.mask, 2, rng);
+    for (Eigen::Vector3f& point : p.points) {
+      const float range = point.norm();
+      point *= (range + range_noise(rng)) / range;
+    }
+  }
+  return pairs;
+}
+
+// 90 pairs of a rig that stays at the truth (generated once: the rasterised masks take ~15 ms
+// a pair): the stable streams, and the "before" part of the change streams.
+const std::vector<CalibrationPair>& stablePairs(bool noisy) {
+  static const std::vector<CalibrationPair> clean = pairsSeenWith(fieldsafeTruth(), 90, 21, false);
+  static const std::vector<CalibrationPair> with_noise = pairsSeenWith(fieldsafeTruth(), 90, 22, true);
+  return noisy ? with_noise : clean;
+}
+
+std::vector<CalibrationPair> firstPairs(const std::vector<CalibrationPair>& pairs, std::size_t n) {
+  return {pairs.begin(), pairs.begin() + static_cast<long>(n)};
+}
+
+struct MonitorRun {
+  std::vector<DriftRecord> records;
+  std::optional<DriftCandidate> candidate;
+  std::optional<double> first_error_stamp;
+};
+
+MonitorRun monitor(const std::vector<CalibrationPair>& stream, const Extrinsic& reference,
+            int threads = 1) {
+  CalibrationConfig calibration;
+  calibration.num_threads = threads;
+  DriftMonitor m(fieldsafeCamera(), reference, DriftConfig{}, calibration);
+  MonitorRun run;
+  for (const CalibrationPair& p : stream) {
+    if (auto r = m.addPair(p)) run.records.push_back(*r);
+  }
+  run.candidate = m.candidate();
+  run.first_error_stamp = m.firstErrorStamp();
+  return run;
+}
+
+std::vector<CalibrationPair> concatenated(std::vector<CalibrationPair> a,
+                                          const std::vector<CalibrationPair>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  for (std::size_t i = 0; i < a.size(); ++i) a[i].stamp_s = 100.0 + static_cast<double>(i);
+  return a;
+}
+
+}  // namespace
+
+TEST(DriftMonitor, StaysOkOnAStableRigCleanAndNoisy) {
+  for (bool noisy : {false, true}) {
+    const MonitorRun run = monitor(stablePairs(noisy), fieldsafeTruth());
+    ASSERT_EQ(run.records.size(), 21u);  // (90 - 30) / 3 + 1
+    for (const DriftRecord& r : run.records) {
+      EXPECT_EQ(r.state, DriftState::kOk) << (noisy ? "noisy" : "clean") << " at pair "
+                                          << r.pairs_seen << ": p = " << r.test.p_value;
+      EXPECT_EQ(r.test.pairs_in_window, 30u);
+    }
+    EXPECT_FALSE(run.candidate);
+  }
+}
+
+TEST(DriftMonitor, ConfirmsAHalfDegreeTurnWithin30PairsAndFitsTheNewTruth) {
+  const Extrinsic before = fieldsafeTruth();
+  const Extrinsic after = bumped(before, Eigen::Vector3d(0.3, -0.8, 0.5), 0.5, Eigen::Vector3d::Zero());
+  const auto stream = concatenated(firstPairs(stablePairs(false), 45),
+                                   pairsSeenWith(after, 63, 32, false));
+  const MonitorRun run = monitor(stream, before);
+  for (const DriftRecord& r : run.records) {
+    if (r.pairs_seen <= 45) EXPECT_EQ(r.state, DriftState::kOk) << "before, at " << r.pairs_seen;
+  }
+  ASSERT_TRUE(run.first_error_stamp);
+  const double pairs_after_change = *run.first_error_stamp - (100.0 + 45.0) + 1.0;
+  EXPECT_LE(pairs_after_change, 30.0);
+  EXPECT_EQ(run.records.back().state, DriftState::kError);
+  // The change is reported as what it is.
+  EXPECT_NEAR(run.records.back().test.change.angle_deg, 0.5, 0.1);
+  EXPECT_GT(run.records.back().test.loss_reference, 5.0 * run.records.back().test.loss_fit);
+  ASSERT_TRUE(run.candidate);
+  EXPECT_TRUE(run.candidate->complete);
+  EXPECT_NEAR(run.candidate->change_stamp_s, 145.0, 2.0);  // the first pair after the bump
+  EXPECT_LT(rotationErrorRad(run.candidate->extrinsic, after), 0.15 * kDeg);
+  EXPECT_LT(translationErrorM(run.candidate->extrinsic, after), 0.02);
+}
+
+TEST(DriftMonitor, ConfirmsAThreeCentimetreShiftWithin30Pairs) {
+  const Extrinsic before = fieldsafeTruth();
+  const Extrinsic after = bumped(before, Eigen::Vector3d::UnitX(), 0.0, Eigen::Vector3d(0.025, -0.015, 0.006));
+  const auto stream = concatenated(firstPairs(stablePairs(false), 45),
+                                   pairsSeenWith(after, 63, 42, false));
+  const MonitorRun run = monitor(stream, before);
+  ASSERT_TRUE(run.first_error_stamp);
+  EXPECT_LE(*run.first_error_stamp - (100.0 + 45.0) + 1.0, 30.0);
+  ASSERT_TRUE(run.candidate);
+  EXPECT_LT(rotationErrorRad(run.candidate->extrinsic, after), 0.15 * kDeg);
+  EXPECT_LT(translationErrorM(run.candidate->extrinsic, after), 0.02);
+}
+
+TEST(DriftMonitor, AcceptingAnEarlyUpdateOffersTheFinalOneLater) {
+  const Extrinsic before = fieldsafeTruth();
+  const Extrinsic after = bumped(before, Eigen::Vector3d(1.0, 0.2, -0.4), 0.5, Eigen::Vector3d::Zero());
+  const auto stream = concatenated(firstPairs(stablePairs(false), 36),
+                                   pairsSeenWith(after, 51, 52, false));
+  DriftConfig config;
+  config.update_pairs = 40;
+  CalibrationConfig calibration;
+  calibration.num_threads = 1;
+  DriftMonitor m(fieldsafeCamera(), before, config, calibration);
+  std::vector<DriftUpdate> updates;
+  for (const CalibrationPair& p : stream) {
+    m.addPair(p);
+    if (m.updateReady()) updates.push_back(*m.acceptCandidate());
+  }
+  ASSERT_EQ(updates.size(), 2u);
+  EXPECT_FALSE(updates[0].accepted.complete);  // at the moment of confirmation
+  EXPECT_TRUE(updates[1].accepted.complete);   // on update_pairs pairs after the change
+  EXPECT_EQ(updates[0].old_reference.translation, before.translation);
+  EXPECT_EQ(updates[1].old_reference.translation, updates[0].accepted.extrinsic.translation);
+  EXPECT_TRUE(updates[0].accepted.first_error_stamp_s);
+  EXPECT_EQ(m.state(), DriftState::kOk);
+  EXPECT_LT(rotationErrorRad(m.reference(), after), 0.15 * kDeg);
+  EXPECT_LT(translationErrorM(m.reference(), after), 0.02);
+  EXPECT_FALSE(m.acceptCandidate());  // nothing left to accept
+}
+
+TEST(DriftMonitor, SameInputSameVerdictsWhateverTheThreadCount) {
+  const Extrinsic before = fieldsafeTruth();
+  const Extrinsic after = bumped(before, Eigen::Vector3d(0.0, 1.0, 0.0), 0.5, Eigen::Vector3d::Zero());
+  const auto stream = concatenated(firstPairs(stablePairs(true), 30),
+                                   pairsSeenWith(after, 27, 62, true));
+  const MonitorRun one = monitor(stream, before, 1);
+  const MonitorRun again = monitor(stream, before, 1);
+  const MonitorRun two = monitor(stream, before, 2);
+  ASSERT_EQ(one.records.size(), again.records.size());
+  ASSERT_EQ(one.records.size(), two.records.size());
+  for (std::size_t i = 0; i < one.records.size(); ++i) {
+    for (const MonitorRun* other : {&again, &two}) {
+      const DriftRecord& a = one.records[i];
+      const DriftRecord& b = other->records[i];
+      EXPECT_EQ(a.state, b.state);
+      EXPECT_EQ(a.test.p_value, b.test.p_value);
+      EXPECT_EQ(a.test.fit.rotation_vector, b.test.fit.rotation_vector);
+      EXPECT_EQ(a.test.fit.translation, b.test.fit.translation);
+      EXPECT_EQ(a.test.loss_fit, b.test.loss_fit);
+    }
+  }
+}
+
+TEST(DriftMonitor, TestsEveryPeriodOnceTheWindowIsFull) {
+  DriftConfig config;
+  config.window_pairs = 12;
+  config.period_pairs = 4;
+  config.folds = 3;
+  CalibrationConfig calibration;
+  calibration.num_threads = 1;
+  DriftMonitor m(fieldsafeCamera(), fieldsafeTruth(), config, calibration);
+  std::vector<std::uint64_t> tested_at;
+  for (const CalibrationPair& p : firstPairs(stablePairs(false), 24)) {
+    if (auto r = m.addPair(p)) tested_at.push_back(r->pairs_seen);
+  }
+  EXPECT_EQ(tested_at, (std::vector<std::uint64_t>{12, 16, 20, 24}));
+  EXPECT_EQ(m.pairsInWindow(), 12u);
+}
+
+TEST(DriftMonitor, RefusesABadConfig) {
+  DriftConfig config;
+  config.period_pairs = 0;
+  EXPECT_THROW(DriftMonitor(fieldsafeCamera(), fieldsafeTruth(), config, CalibrationConfig{}),
+               std::invalid_argument);
+  config = DriftConfig{};
+  config.significance = 0.0;
+  EXPECT_THROW(config.validate(), std::invalid_argument);
+}
