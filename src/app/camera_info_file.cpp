@@ -1,6 +1,7 @@
 // camera_calibration / camera_info_manager YAML files <-> CameraModel.
 
 #include "thermal_lidar_calibration/app/camera_info_file.hpp"
+#include "thermal_lidar_calibration/app/camera_calibration.hpp"
 #include "thermal_lidar_calibration/app/yaml_file.hpp"
 
 #include <yaml-cpp/yaml.h>
@@ -96,34 +97,16 @@ CameraModel loadCameraInfoFile(const std::string& path) {
   if (k.size() != 9) {
     fail(path, "'camera_matrix' has " + std::to_string(k.size()) + " values, expected 9 (3x3)");
   }
-  std::array<double, 9> K{};
-  bool k_zero = true;
-  for (int i = 0; i < 9; ++i) {
-    K[i] = k[i];
-    if (k[i] != 0.0) k_zero = false;
-  }
-  if (k_zero) fail(path, "'camera_matrix' is all zeros; calibrate the camera intrinsics first");
-
-  std::string model;
+  CameraCalibration calibration;
+  calibration.width = width;
+  calibration.height = height;
+  std::copy(k.begin(), k.end(), calibration.K.begin());
   if (root["distortion_model"] && !root["distortion_model"].IsNull()) {
-    model = root["distortion_model"].as<std::string>();
+    calibration.distortion_model = root["distortion_model"].as<std::string>();
   }
-  std::vector<double> D = readMatrix(root, "distortion_coefficients", path, true);
-  const bool all_zero = std::all_of(D.begin(), D.end(), [](double d) { return d == 0.0; });
-  if (model == "plumb_bob") {
-    if (!D.empty() && D.size() != 5) {
-      fail(path, "plumb_bob needs 5 distortion coefficients (k1 k2 p1 p2 k3), got " +
-                     std::to_string(D.size()));
-    }
-  } else if (!all_zero) {
-    fail(path, "distortion_model '" + model +
-                   "' is not supported; use plumb_bob (5 coefficients) or none");
-  }
-  if (all_zero) D.clear();
+  calibration.D = readMatrix(root, "distortion_coefficients", path, true);
   try {
-    CameraModel camera = CameraModel::fromK(width, height, K, D);
-    camera.validate();
-    return camera;
+    return cameraModelFromCalibration(calibration);  // the same rules as a CameraInfo message
   } catch (const std::invalid_argument& e) {
     fail(path, e.what());
   }

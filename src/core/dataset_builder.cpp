@@ -59,8 +59,20 @@ DatasetBuilder::DatasetBuilder(CameraModel camera, GateConfig config)
 }
 
 OfferOutcome DatasetBuilder::offer(const std::function<Frame()>& decode) {
+  return admit(decode, false);
+}
+
+OfferOutcome DatasetBuilder::restore(Frame frame) {
+  return admit([&frame] { return std::move(frame); }, true);
+}
+
+// The one path for live, bag and stored frames. A stored frame (kept in an earlier session) is
+// checked and counted exactly like a live one, but neither the skip rule nor the count rule
+// applies again: it was kept under them once, and re-deciding with other settings would
+// silently drop work the user has already collected.
+OfferOutcome DatasetBuilder::admit(const std::function<Frame()>& decode, bool stored) {
   OfferOutcome outcome;
-  if (gate_.consumeSkip()) {
+  if (!stored && gate_.consumeSkip()) {
     outcome.decision = GateDecision::kSkipped;
     return outcome;
   }
@@ -95,8 +107,9 @@ OfferOutcome DatasetBuilder::offer(const std::function<Frame()>& decode) {
 
   gate_.counts().nonfinite_points_dropped += frame.nonfinite_points_dropped;
 
-  outcome.decision =
-      gate_.decide(people.mask_people, people.cluster_people, people.smallest_cluster_points);
+  outcome.decision = stored ? GateDecision::kKept
+                            : gate_.decide(people.mask_people, people.cluster_people,
+                                           people.smallest_cluster_points);
   if (outcome.decision != GateDecision::kKept) return outcome;
 
   CalibrationPair pair;
@@ -113,17 +126,6 @@ OfferOutcome DatasetBuilder::offer(const std::function<Frame()>& decode) {
     lidar_frame_ = frame.lidar_frame;
   }
   return outcome;
-}
-
-void DatasetBuilder::addExistingPair(CalibrationPair pair) {
-  if (pair.mask.cols != camera_.width || pair.mask.rows != camera_.height) {
-    throw std::invalid_argument(
-        "stored pair mask is " + sizeString(pair.mask.cols, pair.mask.rows) +
-        " but camera_info says " + sizeString(camera_.width, camera_.height) +
-        ": the dataset was recorded with a different camera");
-  }
-  pair.mask = binarizeMask(pair.mask);  // accept 0/1, 0/255 or id masks; store 0/1
-  pairs_.push_back(std::move(pair));
 }
 
 void DatasetBuilder::reset() {

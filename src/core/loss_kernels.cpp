@@ -283,6 +283,14 @@ bool cpuHasAvx2() {
 }
 #endif
 
+bool vectorPathActive() {
+#if TLC_HAVE_AVX2_PATH
+  return cpuHasAvx2();
+#else
+  return false;
+#endif
+}
+
 template <bool kDistorted, bool kBilinear>
 float sum(const float* m, const Lens& lens, const Points& p, const MapView& map, float penalty) {
 #if TLC_HAVE_AVX2_PATH

@@ -48,6 +48,10 @@ float sumPsiScalar(const float* m, bool distorted, bool bilinear, const Lens& le
 int countInsideScalar(const float* m, bool distorted, const Lens& lens, const Points& p,
                       int width, int height);
 
+// True when sumPsi / countInside run the AVX2+FMA code on this CPU; false when they are the
+// portable code (then comparing the two compares the portable code with itself).
+bool vectorPathActive();
+
 // countInside(...) >= needed, deciding as soon as the remaining points cannot change it.
 bool atLeastInside(const float* m, bool distorted, const Lens& lens, const Points& p, int width,
                    int height, int needed);

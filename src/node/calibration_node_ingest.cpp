@@ -31,11 +31,15 @@ void CalibrationNode::resumeDataset() {
     camera_info_msg_ = cameraInfoFromModel(*contents.camera);
     createBuilder(*contents.camera, params_.dataset_bag);
   }
-  for (std::size_t i = 0; i < contents.pairs.size(); ++i) {
+  for (std::size_t i = 0; i < contents.frames.size(); ++i) {
+    const OfferOutcome outcome = builder_->restore(std::move(contents.frames[i]));
+    if (outcome.decision != GateDecision::kKept) {
+      ROS_WARN("~resume: skipped a stored pair: %s", outcome.error.c_str());
+      continue;
+    }
     // The exact header stamp, as onFrame keys live frames (not ros::Time(pair.stamp_s): a double
     // at epoch times has ~240 ns resolution, so the nanoseconds would not round-trip).
     stored_stamps_ns_.insert(static_cast<long long>(contents.pair_stamps_ns[i]));
-    builder_->addExistingPair(std::move(contents.pairs[i]));  // throws if the camera size differs
   }
   pairs_resumed_ = builder_->pairs().size();
   camera_frame_ = contents.camera_frame;

@@ -2,7 +2,6 @@
 
 #include "thermal_lidar_calibration/ros/dataset_bag.hpp"
 
-#include "thermal_lidar_calibration/core/person_counter.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 
 #include <rosbag/bag.h>
@@ -283,16 +282,9 @@ DatasetBagContents readDatasetBag(const std::string& path) {
     try {
       Frame frame = decodeFrame(*image, *mask, *clusters, DatasetBagTopics::kImage,
                                 DatasetBagTopics::kMask, DatasetBagTopics::kClusters);
-      CalibrationPair pair;
-      pair.stamp_s = frame.stamp_s;
-      pair.people = countMaskPeople(frame.mask);
-      pair.mask = std::move(frame.mask);
-      pair.image = std::move(frame.image);
-      pair.points = std::move(frame.points);
-      pair.labels = std::move(frame.labels);
       contents.camera_frame = frame.camera_frame;
       contents.lidar_frame = frame.lidar_frame;
-      contents.pairs.push_back(std::move(pair));
+      contents.frames.push_back(std::move(frame));
       contents.pair_stamps_ns.push_back(image->header.stamp.toNSec());
     } catch (const std::invalid_argument& e) {
       contents.errors.push_back(e.what());

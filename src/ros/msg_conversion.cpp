@@ -2,6 +2,7 @@
 // naming the topic, what was wrong and what to do. (The encoders live in msg_encoding.cpp.)
 
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
+#include "thermal_lidar_calibration/app/camera_calibration.hpp"
 
 #include <sensor_msgs/image_encodings.h>
 
@@ -284,58 +285,17 @@ std::vector<Eigen::Vector3f> decodeCloudPoints(const sensor_msgs::PointCloud2& m
 }
 
 CameraModel cameraModelFromMsg(const sensor_msgs::CameraInfo& msg) {
-  const std::string what = "CameraInfo";
-  if (msg.width == 0 || msg.height == 0) {
-    throw std::invalid_argument(what + ": image size is " + std::to_string(msg.width) + "x" +
-                                std::to_string(msg.height) +
-                                "; publish the calibrated width and height");
-  }
-  bool k_zero = true;
-  std::array<double, 9> K{};
-  for (int i = 0; i < 9; ++i) {
-    K[i] = msg.K[i];
-    if (K[i] != 0.0) k_zero = false;
-    if (!std::isfinite(K[i])) {
-      throw std::invalid_argument(what + ": K has a non-finite entry; publish a calibrated K");
-    }
-  }
-  if (k_zero) {
-    throw std::invalid_argument(what + ": K is all zeros (camera not calibrated); calibrate the "
-                                       "intrinsics or give a camera_calibration YAML file");
-  }
-  std::vector<double> D(msg.D.begin(), msg.D.end());
-  const std::string& model = msg.distortion_model;
-  const bool all_zero = std::all_of(D.begin(), D.end(), [](double d) { return d == 0.0; });
-  if (model == "plumb_bob") {
-    if (D.empty()) {
-      // plumb_bob with no coefficients: no distortion.
-    } else if (D.size() != 5) {
-      throw std::invalid_argument(what + ": plumb_bob needs 5 distortion coefficients, got " +
-                                  std::to_string(D.size()) + "; publish k1 k2 p1 p2 k3");
-    }
-  } else if (model.empty() || model == "none") {
-    if (!all_zero) {
-      throw std::invalid_argument(what + ": distortion_model is '" + model +
-                                  "' but D is non-zero; set distortion_model to plumb_bob");
-    }
-    D.clear();
-  } else {
-    if (!all_zero) {
-      throw std::invalid_argument(what + ": distortion_model '" + model +
-                                  "' is not supported; use plumb_bob (5 coefficients) or none, "
-                                  "or rectify the images first");
-    }
-    D.clear();  // any model with all-zero coefficients is a plain pinhole
-  }
-  if (all_zero) D.clear();
-  CameraModel camera;
+  CameraCalibration calibration;
+  calibration.width = msg.width;
+  calibration.height = msg.height;
+  std::copy(msg.K.begin(), msg.K.end(), calibration.K.begin());
+  calibration.distortion_model = msg.distortion_model;
+  calibration.D.assign(msg.D.begin(), msg.D.end());
   try {
-    camera = CameraModel::fromK(static_cast<int>(msg.width), static_cast<int>(msg.height), K, D);
-    camera.validate();
+    return cameraModelFromCalibration(calibration);  // the same rules as a camera_info file
   } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(what + ": " + e.what());
+    throw std::invalid_argument(std::string("CameraInfo: ") + e.what());
   }
-  return camera;
 }
 
 Frame decodeFrame(const sensor_msgs::Image& image, const sensor_msgs::Image& mask,

@@ -2,6 +2,7 @@
 // positive runs on small bags written here with the rosbag C++ API.
 
 #include "bag_fixture.hpp"
+#include "../support/test_files.hpp"
 
 #include "thermal_lidar_calibration/ros/dataset_bag.hpp"
 #include "thermal_lidar_calibration/app/result_file.hpp"
@@ -44,20 +45,10 @@ std::string readFile(const std::string& path) {
 class CalibrateBagCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    char pattern[] = "/tmp/tlc_cli_XXXXXX";
-    const char* d = mkdtemp(pattern);
-    ASSERT_NE(d, nullptr);
-    dir_ = d;
+    dir_ = thermal_lidar_calibration::test_support::tempDir("tlc_cli_");
     // A smaller optimizer than Table 1 (enough for these clean bags); every frame a candidate.
     std::ofstream(dir_ + "/fast.yaml") << "population_size: 150\nmax_iterations: 80\n"
                                           "skip_frames: 0\nseed: 3\n";
-  }
-  void TearDown() override {
-    if (std::getenv("TLC_KEEP_TEST_DIR")) {
-      std::printf("kept %s\n", dir_.c_str());
-    } else {
-      std::system(("rm -rf '" + dir_ + "'").c_str());
-    }
   }
 
   std::string bag(const BagSpec& spec, const std::string& name = "in.bag") {

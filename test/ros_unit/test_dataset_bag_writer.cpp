@@ -106,7 +106,7 @@ TEST(DatasetBagWriter, FullDiskIsAnErrorAndEarlierPairsSurvive) {
   ASSERT_LT(written, kAttempts) << "the file size limit was never reached";
   ASSERT_GE(written, 1);
   const auto contents = tlc::ros_io::readDatasetBag(path);
-  EXPECT_EQ(static_cast<int>(contents.pairs.size()), written);
+  EXPECT_EQ(static_cast<int>(contents.frames.size()), written);
   EXPECT_TRUE(contents.errors.empty());
   std::filesystem::remove_all(dir);
 }

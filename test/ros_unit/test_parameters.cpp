@@ -6,6 +6,8 @@
 #include "thermal_lidar_calibration/app/unknown_parameters.hpp"
 #include "thermal_lidar_calibration/node/parameter_catalog.hpp"
 
+#include "../support/test_files.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -21,10 +23,8 @@ namespace {
 
 std::string yamlFile(const std::string& text) {
   static int counter = 0;
-  char pattern[] = "/tmp/tlc_params_XXXXXX";
-  const char* dir = mkdtemp(pattern);
-  const std::string path = std::string(dir ? dir : "/tmp") + "/p" + std::to_string(counter++) +
-                           ".yaml";
+  static const std::string dir = test_support::tempDir("tlc_params_");
+  const std::string path = dir + "/p" + std::to_string(counter++) + ".yaml";
   std::ofstream(path) << text;
   return path;
 }

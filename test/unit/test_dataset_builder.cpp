@@ -233,22 +233,27 @@ TEST(DatasetBuilder, SmallClusterRejectsTheFrame) {
   EXPECT_EQ(builder.pairs().size(), 1u);
 }
 
-TEST(DatasetBuilder, AddExistingPairAndReset) {
+TEST(DatasetBuilder, RestoredFramesAreCheckedLikeLiveOnesButNotGatedAgain) {
   tlc::DatasetBuilder builder(camera(), gate());
-  tlc::CalibrationPair pair;
-  pair.mask = cv::Mat::zeros(kHeight, kWidth, CV_8UC1);
-  pair.mask(cv::Rect(1, 1, 3, 3)).setTo(255);
-  pair.points = {Eigen::Vector3f(1.0f, 2.0f, 3.0f)};
-  pair.labels = {1};
-  pair.people = 1;
-  builder.addExistingPair(pair);
+  // Unequal counts would be rejected live; a frame kept in an earlier session stays kept.
+  EXPECT_EQ(builder.restore(frame(2, 1)).decision, GateDecision::kKept);
   ASSERT_EQ(builder.pairs().size(), 1u);
-  EXPECT_EQ(builder.pairs()[0].mask.at<std::uint8_t>(2, 2), 1);  // stored as 0/1
+  EXPECT_EQ(builder.pairs()[0].mask.at<std::uint8_t>(6, 3), 1);  // stored as 0/1
+  EXPECT_EQ(builder.pairs()[0].people, 2);                       // counted like a live frame
   EXPECT_EQ(builder.counts().considered(), 0u);                  // no gating
+  EXPECT_EQ(builder.cameraFrame(), "thermal_optical");
 
-  tlc::CalibrationPair wrong;
+  // Recorded with another camera: the live check refuses it and says why.
+  tlc::Frame wrong = frame(1, 1);
   wrong.mask = cv::Mat::zeros(kHeight + 2, kWidth, CV_8UC1);
-  EXPECT_THROW(builder.addExistingPair(wrong), std::invalid_argument);
+  const tlc::OfferOutcome bad_size = builder.restore(wrong);
+  EXPECT_EQ(bad_size.decision, GateDecision::kBadMessage);
+  EXPECT_NE(bad_size.error.find("camera_info says"), std::string::npos) << bad_size.error;
+  // Points without labels: the live check, not a silent pair.
+  tlc::Frame unlabeled = frame(1, 1);
+  unlabeled.labels.pop_back();
+  EXPECT_EQ(builder.restore(unlabeled).decision, GateDecision::kBadMessage);
+  EXPECT_EQ(builder.pairs().size(), 1u);
 
   EXPECT_EQ(builder.offer([] { return frame(1, 1); }).decision, GateDecision::kKept);
   builder.reset();

@@ -28,8 +28,10 @@ class DatasetBuilder {
   // The decoded frame's mask must match the camera size, else kBadMessage.
   OfferOutcome offer(const std::function<Frame()>& decode);
 
-  // Add a pair that was kept earlier (e.g. reloaded from a dataset bag): no gating.
-  void addExistingPair(CalibrationPair pair);
+  // A frame kept in an earlier session (reloaded from a dataset bag for ~resume): the same
+  // checks and counting as offer(), but no skip or count rule (it was kept under them once).
+  // kKept, or kBadMessage with the reason (e.g. recorded with a different camera).
+  OfferOutcome restore(Frame frame);
   void reset();  // forget pairs and counts
 
   const std::vector<CalibrationPair>& pairs() const { return pairs_; }
@@ -39,6 +41,8 @@ class DatasetBuilder {
   const std::string& lidarFrame() const { return lidar_frame_; }
 
  private:
+  OfferOutcome admit(const std::function<Frame()>& decode, bool stored);
+
   CameraModel camera_;
   FrameGate gate_;
   std::vector<CalibrationPair> pairs_;

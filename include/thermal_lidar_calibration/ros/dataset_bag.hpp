@@ -65,13 +65,15 @@ class DatasetBagWriter {
 bool recoverDatasetBag(const std::string& path);
 
 struct DatasetBagContents {
-  std::vector<CalibrationPair> pairs;   // masks binarised, people counted
-  // Exact image header stamps (ros::Time::toNSec) of `pairs`, index for index. pair.stamp_s is
+  // The stored frames, decoded by the live decoder; they become pairs through
+  // DatasetBuilder::restore, which checks them like live frames.
+  std::vector<Frame> frames;
+  // Exact image header stamps (ros::Time::toNSec) of `frames`, index for index. frame.stamp_s is
   // toSec(), which does not round-trip to nanoseconds at epoch times; de-duplicate on these.
   std::vector<std::uint64_t> pair_stamps_ns;
   std::optional<CameraModel> camera;    // from the last camera_info in the bag
   std::string camera_frame, lidar_frame;
-  std::vector<std::string> errors;      // pairs that could not be decoded (skipped)
+  std::vector<std::string> errors;      // frames that could not be decoded (skipped)
 };
 // Reads a dataset bag written by DatasetBagWriter (recovering it first). Throws
 // std::runtime_error if the bag cannot be opened.
