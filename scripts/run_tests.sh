@@ -6,6 +6,14 @@ set -euo pipefail
 # shellcheck source=scripts/workspace.sh
 source "$(dirname "${BASH_SOURCE[0]}")/workspace.sh"
 prepare_workspace --tests
+# Every test writes its files under one directory: removed after a green run, kept and named
+# after a red one (set TLC_TEST_TMP to choose it; a directory you choose is never removed).
+own_tmp=""
+if [ -z "${TLC_TEST_TMP:-}" ]; then
+  TLC_TEST_TMP="$(mktemp -d /tmp/tlc_tests.XXXXXX)"
+  own_tmp=1
+fi
+export TLC_TEST_TMP
 export ROS_HOME="${ROS_HOME:-$ws/ros_home}"
 mkdir -p "$ROS_HOME"
 cd "$ws"
@@ -27,5 +35,8 @@ skipped=$(echo "$line" | sed -E 's/.* ([0-9]+) skipped.*/\1/')
 failed=$((errors + failures))
 passed=$((tests - failed - skipped))
 echo "$line" >&2
+if [ -n "$own_tmp" ]; then
+  if [ "$failed" -eq 0 ]; then rm -rf "$TLC_TEST_TMP"; else echo "test files kept in $TLC_TEST_TMP" >&2; fi
+fi
 echo "${passed} passed, ${failed} failed, ${skipped} skipped"
 [ "$failed" -eq 0 ] && [ "$tests" -gt 0 ]

@@ -283,14 +283,6 @@ bool cpuHasAvx2() {
 }
 #endif
 
-bool vectorPathActive() {
-#if TLC_HAVE_AVX2_PATH
-  return cpuHasAvx2();
-#else
-  return false;
-#endif
-}
-
 template <bool kDistorted, bool kBilinear>
 float sum(const float* m, const Lens& lens, const Points& p, const MapView& map, float penalty) {
 #if TLC_HAVE_AVX2_PATH
@@ -300,6 +292,14 @@ float sum(const float* m, const Lens& lens, const Points& p, const MapView& map,
 }
 
 }  // namespace
+
+bool vectorPathActive() {
+#if TLC_HAVE_AVX2_PATH
+  return cpuHasAvx2();
+#else
+  return false;
+#endif
+}
 
 float sumPsi(const float* m, bool distorted, bool bilinear, const Lens& lens, const Points& p,
              const MapView& map, float penalty) {

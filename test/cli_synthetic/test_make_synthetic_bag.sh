@@ -5,7 +5,7 @@
 set -uo pipefail
 export PATH=/usr/bin:/bin:$PATH
 exe="${1:-make_synthetic_bag}"
-dir="$(mktemp -d "${TMPDIR:-/tmp}/tlc_synth_cli.XXXXXX")"
+dir="$(mktemp -d "${TLC_TEST_TMP:-/tmp}/tlc_synth_cli.XXXXXX")"
 trap 'rm -rf "$dir"' EXIT
 failures=0
 check() {  # check DESCRIPTION COMMAND...
