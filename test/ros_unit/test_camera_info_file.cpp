@@ -1,6 +1,7 @@
 // camera_calibration YAML files: the shipped FLIR A65 file, round trips and bad files.
 
 #include "thermal_lidar_calibration/app/camera_info_file.hpp"
+#include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 
 #include "../support/test_files.hpp"
 
@@ -8,6 +9,7 @@
 
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace tlc = thermal_lidar_calibration;
 using tlc::loadCameraInfoFile;
@@ -103,4 +105,50 @@ TEST(CameraInfoFile, BadFilesSayWhatIsWrong) {
             std::string::npos);
   const std::string e = errorOf(dir + "/missing.yaml");
   EXPECT_EQ(e.rfind("camera info file " + dir + "/missing.yaml: ", 0), 0u) << e;
+}
+
+// A camera accepted live is accepted from a file and the other way round: both readers use
+// cameraModelFromCalibration, so each case gives the same verdict and the same reason.
+TEST(CameraInfoFile, FileAndMessageFollowOneRuleSet) {
+  struct Case {
+    const char* model;
+    std::vector<double> D;
+    const char* reason;  // empty: accepted
+  };
+  const Case cases[] = {{"plumb_bob", {-0.05, 0.36, 0.0, 0.0, 0.0}, ""},
+                        {"plumb_bob", {}, ""},
+                        {"none", {0, 0, 0, 0, 0}, ""},
+                        {"", {}, ""},
+                        {"none", {0.1, 0, 0, 0, 0}, "set distortion_model to plumb_bob"},
+                        {"plumb_bob", {0.1, 0.1, 0.0, 0.0}, "5 distortion coefficients"},
+                        {"equidistant", {0.1, 0.1, 0.0, 0.0}, "not supported"}};
+  const std::string dir = tempDir();
+  int n = 0;
+  for (const Case& c : cases) {
+    sensor_msgs::CameraInfo msg;
+    msg.width = 640;
+    msg.height = 512;
+    msg.K = {772.4, 0, 322.7, 0, 772.8, 250.7, 0, 0, 1};
+    msg.distortion_model = c.model;
+    msg.D = c.D;
+    std::string d_text;
+    for (std::size_t i = 0; i < c.D.size(); ++i) d_text += (i ? ", " : "") + std::to_string(c.D[i]);
+    const std::string path =
+        writeText(dir + "/case" + std::to_string(n++) + ".yaml",
+                  "image_width: 640\nimage_height: 512\n"
+                  "camera_matrix: [772.4, 0, 322.7, 0, 772.8, 250.7, 0, 0, 1]\n"
+                  "distortion_model: '" + std::string(c.model) + "'\n"
+                  "distortion_coefficients: [" + d_text + "]\n");
+    const std::string from_msg =
+        tlc::test_support::errorOf([&] { tlc::ros_io::cameraModelFromMsg(msg); });
+    const std::string from_file = errorOf(path);
+    SCOPED_TRACE(std::string("model '") + c.model + "', " + std::to_string(c.D.size()) + " coefficients");
+    if (*c.reason == '\0') {
+      EXPECT_EQ(from_msg, "<no exception>");
+      EXPECT_EQ(from_file, "<no exception>");
+    } else {
+      EXPECT_NE(from_msg.find(c.reason), std::string::npos) << from_msg;
+      EXPECT_NE(from_file.find(c.reason), std::string::npos) << from_file;
+    }
+  }
 }
