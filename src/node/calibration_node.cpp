@@ -4,6 +4,7 @@
 
 #include "thermal_lidar_calibration/app/camera_info_file.hpp"
 #include "thermal_lidar_calibration/app/unknown_parameters.hpp"
+#include "thermal_lidar_calibration/app/writable_path.hpp"
 #include "thermal_lidar_calibration/node/parameter_catalog.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 #include "thermal_lidar_calibration/ros/node_parameter_source.hpp"
@@ -83,6 +84,17 @@ void CalibrationNode::readParameters() {
   for (const auto& kv : describeCoreParameters(params_.core)) s << "\n  " << kv.first << ": " << kv.second;
   for (const auto& kv : describeNodeParameters(params_)) s << "\n  " << kv.first << ": " << kv.second;
   ROS_INFO("effective parameters:%s", s.str().c_str());
+  // The files written later are checked now: a bad path found when the first pair is kept costs
+  // the user the drive so far.
+  const std::pair<const char*, const std::string*> files[] = {
+      {"output_file", &params_.output_file}, {"dataset_bag", &params_.dataset_bag}};
+  for (const auto& [key, path] : files) {
+    if (path->empty()) continue;
+    const std::string why = whyNotWritable(*path);
+    if (!why.empty()) {
+      throw std::invalid_argument("parameter '" + std::string(key) + "' = " + *path + ": " + why);
+    }
+  }
 }
 
 void CalibrationNode::createBuilder(const CameraModel& camera, const std::string& source) {

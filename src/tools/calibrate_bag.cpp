@@ -5,6 +5,7 @@
 
 #include "thermal_lidar_calibration/core/loss.hpp"
 #include "thermal_lidar_calibration/ros/bag_ingest.hpp"
+#include "thermal_lidar_calibration/app/writable_path.hpp"
 #include "thermal_lidar_calibration/app/calibration_summary.hpp"
 #include "thermal_lidar_calibration/app/camera_info_file.hpp"
 #include "thermal_lidar_calibration/app/progress_line.hpp"
@@ -108,6 +109,9 @@ int runCalibrateBag(const CalibrateBagOptions& options) {
   std::signal(SIGINT, onSigint);
 
   CoreParameters params = loadParameters(options);
+  // Checked before the bag is read: a run must not end in "cannot write" after minutes of work.
+  const std::string output_problem = whyNotWritable(options.output);
+  if (!output_problem.empty()) throw std::invalid_argument("--output: " + output_problem);
   std::optional<Extrinsic> truth;
   if (!options.truth.empty()) truth = readExtrinsicFile(options.truth);
 

@@ -189,6 +189,17 @@ TEST_F(CalibrateBagCli, EmptyBag) {
   EXPECT_NE(e.find("is empty"), std::string::npos) << e;
 }
 
+// An unwritable --output is refused before the bag is read, not after the optimization.
+TEST_F(CalibrateBagCli, OutputInAMissingDirectoryIsRefusedAtOnce) {
+  BagSpec spec;
+  spec.frames = 4;
+  const RunResult r =
+      run("--bag '" + bag(spec) + "' --output '" + dir_ + "/no/such/dir/out.yaml' --quiet");
+  const std::string e = expectOneLineError(r);
+  EXPECT_NE(e.find("--output: directory " + dir_ + "/no/such/dir of"), std::string::npos) << e;
+  EXPECT_NE(e.find("does not exist"), std::string::npos) << e;
+}
+
 TEST_F(CalibrateBagCli, UsageErrorsExitWithTwo) {
   expectOneLineError(run(""), 2);
   expectOneLineError(run("--bag x.bag --output y.yaml --algorithm 3"), 2);

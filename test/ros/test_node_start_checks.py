@@ -1,0 +1,70 @@
+#!/usr/bin/env python3
+"""calibration_node checks the files it will write at start (issue 12, item 5): an unwritable
+~output_file or ~dataset_bag makes it refuse to start with one line that names the key and the
+path, instead of failing an hour later when the first pair is kept.
+
+Runs under rostest (node_start_checks.test) with param ~work_dir.
+"""
+import os
+import shutil
+import subprocess
+import unittest
+
+import rospy
+import rostest
+
+PKG = "thermal_lidar_calibration"
+
+
+class StartChecks(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("node_start_checks")
+        cls.work = rospy.get_param("~work_dir")
+        shutil.rmtree(cls.work, ignore_errors=True)
+        os.makedirs(cls.work)
+
+    def start(self, name, **params):
+        """Runs the node with private params; returns (exit code, output) or fails on a hang."""
+        args = ["rosrun", PKG, "calibration_node", "__name:=" + name]
+        args += ["_%s:=%s" % (k, v) for k, v in params.items()]
+        try:
+            done = subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                  timeout=30, universal_newlines=True)
+        except subprocess.TimeoutExpired:
+            self.fail("calibration_node %s started with %s (should have refused)" % (name, params))
+        return done.returncode, done.stdout
+
+    def assert_refused(self, output, key, path, reason):
+        fatal = [line for line in output.splitlines() if "cannot start" in line]
+        self.assertEqual(len(fatal), 1, output)
+        self.assertIn("parameter '%s' = %s" % (key, path), fatal[0])
+        self.assertIn(reason, fatal[0])
+
+    def test_output_file_in_a_missing_directory(self):
+        path = os.path.join(self.work, "missing", "result.yaml")
+        code, out = self.start("bad_output", output_file=path,
+                               dataset_bag=os.path.join(self.work, "d1.bag"))
+        self.assertNotEqual(code, 0, out)
+        self.assert_refused(out, "output_file", path, "does not exist")
+
+    def test_dataset_bag_under_a_plain_file(self):
+        plain = os.path.join(self.work, "plain")
+        with open(plain, "w") as f:
+            f.write("not a directory\n")
+        path = os.path.join(plain, "dataset.bag")
+        code, out = self.start("bad_bag", output_file=os.path.join(self.work, "r2.yaml"),
+                               dataset_bag=path)
+        self.assertNotEqual(code, 0, out)
+        self.assert_refused(out, "dataset_bag", path, "is not a directory")
+
+    def test_dataset_bag_where_no_file_can_be_made(self):
+        path = "/proc/tlc_dataset.bag"  # no new files in /proc, not even for root
+        code, out = self.start("proc_bag", output_file=os.path.join(self.work, "r3.yaml"),
+                               dataset_bag=path)
+        self.assertNotEqual(code, 0, out)
+        self.assert_refused(out, "dataset_bag", path, "cannot create files in /proc")
+
+
+if __name__ == "__main__":
+    rostest.rosrun(PKG, "node_start_checks", StartChecks)
