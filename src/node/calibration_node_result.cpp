@@ -43,11 +43,15 @@ void CalibrationNode::handleOutcome(CalibrationWorker::Outcome outcome) {
     return;
   }
   result_ = std::move(outcome.result);
-  writeResult();
+  const std::string write_error = writeResult();
   overlay_->setEstimate(result_->extrinsic);
   result_published_ = false;
   if ((ros::WallTime::now() - start_time_).toSec() >= params_.tf_check_wait_s) publishResult();
-  setState(CalibrationStatus::DONE, "done: loss " + std::to_string(result_->loss) + " px");
+  setState(CalibrationStatus::DONE,
+           "done: loss " + std::to_string(result_->loss) + " px" +
+               (write_error.empty() ? ""
+                                    : "; result file NOT written (" + write_error +
+                                          "); free the path and call ~save"));
 }
 
 void CalibrationNode::publishResult() {
@@ -70,7 +74,7 @@ void CalibrationNode::publishResult() {
            staticTransformPublisherCommand(result_->extrinsic, lidar_frame_, published_child_).c_str());
 }
 
-void CalibrationNode::writeResult() {
+std::string CalibrationNode::writeResult() {
   ResultContext context;
   context.lidar_frame = lidar_frame_;
   context.camera_frame = camera_frame_;
@@ -79,10 +83,19 @@ void CalibrationNode::writeResult() {
   context.parameters = params_.core;
   try {
     writeResultFile(params_.output_file, *result_, context);
-    ROS_INFO("result written to %s", params_.output_file.c_str());
+    // Read back: a success that was not checked is not one (a full disk can take the rename and
+    // lose the data).
+    const Extrinsic stored = readExtrinsicFile(params_.output_file);
+    if ((stored.rotation_vector - result_->extrinsic.rotation_vector).norm() > 1e-9 ||
+        (stored.translation - result_->extrinsic.translation).norm() > 1e-9) {
+      throw std::runtime_error(params_.output_file + " does not hold the result after writing");
+    }
   } catch (const std::exception& e) {
-    ROS_ERROR("%s", e.what());
+    ROS_ERROR("result file not written: %s", e.what());
+    return e.what();
   }
+  ROS_INFO("result written to %s", params_.output_file.c_str());
+  return "";
 }
 
 }  // namespace ros_io

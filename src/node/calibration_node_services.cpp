@@ -35,22 +35,22 @@ bool CalibrationNode::onReset(std_srvs::Trigger::Request& /*req*/, std_srvs::Tri
   return true;
 }
 
+// ~save answers only what it checked: success means the result file was written and read back;
+// the dataset part is counted from the bag on disk, not from what the writer believes.
 bool CalibrationNode::onSave(std_srvs::Trigger::Request& /*req*/, std_srvs::Trigger::Response& res) {
-  std::string dataset;
-  if (recorder_->enabled()) {
-    dataset = "; the dataset bag " + recorder_->path() + " holds " +
-              std::to_string(recorder_->pairsInBag()) + " pairs" +
-              (recorder_->recording() ? "" : " (recording stopped: " + recorder_->stopReason() + ")");
-  }
+  const std::string on_disk = recorder_->describeOnDisk(builder_ ? builder_->pairs().size() : 0);
+  const std::string dataset = on_disk.empty() ? "" : "; " + on_disk;
   if (!result_) {
     res.success = false;
-    res.message = "no result yet (" + std::string(stateName(state_)) + ", " + progressLine() + ")" +
-                  dataset;
+    res.message = "no result to write yet (" + std::string(stateName(state_)) + ", " +
+                  progressLine() + ")" + dataset;
     return true;
   }
-  writeResult();
-  res.success = true;
-  res.message = "result written to " + params_.output_file + dataset;
+  const std::string error = writeResult();
+  res.success = error.empty();
+  res.message = (res.success ? "result written to " + params_.output_file + " and read back"
+                             : "result NOT written: " + error) +
+                dataset;
   return true;
 }
 

@@ -77,6 +77,22 @@ std::string DatasetRecorder::clear() {
   return existed ? "deleted " + path_ : path_ + " did not exist yet";
 }
 
+std::string DatasetRecorder::describeOnDisk(std::size_t pairs_kept) const {
+  if (!writer_) return "";
+  const std::string stopped =
+      stop_reason_.empty() ? "" : " (recording stopped: " + stop_reason_ + ")";
+  if (::access(path_.c_str(), F_OK) != 0) {
+    return "no dataset bag on disk (" + path_ + " is written with the next kept pair)" + stopped;
+  }
+  try {
+    const std::size_t on_disk = countDatasetBagPairs(path_);
+    return "the dataset bag " + path_ + " holds " + std::to_string(on_disk) + " of the " +
+           std::to_string(pairs_kept) + " kept pairs" + stopped;
+  } catch (const std::exception& e) {
+    return "the dataset bag cannot be read back: " + std::string(e.what()) + stopped;
+  }
+}
+
 void DatasetRecorder::diagnose(NodeDiagnostics::Status& status) const {
   using diagnostic_msgs::DiagnosticStatus;
   if (!writer_) {

@@ -296,5 +296,15 @@ DatasetBagContents readDatasetBag(const std::string& path) {
   return contents;
 }
 
+std::size_t countDatasetBagPairs(const std::string& path) {
+  rosbag::Bag bag;
+  try {
+    bag.open(path, rosbag::bagmode::Read);  // reads the index only
+    return rosbag::View(bag, rosbag::TopicQuery(DatasetBagTopics::kMarker)).size();
+  } catch (const rosbag::BagException& e) {
+    fail(path, e.what());
+  }
+}
+
 }  // namespace ros_io
 }  // namespace thermal_lidar_calibration

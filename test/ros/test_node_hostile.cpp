@@ -16,6 +16,10 @@
 #include <sensor_msgs/PointCloud2.h>
 #include <std_srvs/Trigger.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
 #include <functional>
 #include <map>
 #include <mutex>
@@ -33,6 +37,7 @@ struct Observed {
   int overlay_images = 0;
   std::vector<std::string> node_warnings;  // /rosout WARN+ from calibration_node
   std::map<std::string, diagnostic_msgs::DiagnosticStatus> diagnostics;  // latest, by name
+  std::atomic<int> input_images{0};  // on thermal/image_raw, to tell when the player is done
 };
 Observed g_observed;
 
@@ -46,6 +51,8 @@ void onOverlay(const sensor_msgs::Image::ConstPtr&) {
   std::lock_guard<std::mutex> lock(g_observed.mutex);
   ++g_observed.overlay_images;
 }
+
+void onInputImage(const sensor_msgs::Image::ConstPtr&) { ++g_observed.input_images; }
 
 void onDiagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr& msg) {
   std::lock_guard<std::mutex> lock(g_observed.mutex);
@@ -265,6 +272,72 @@ TEST(NodeDiskFull, RecordingStopsAndCollectingGoesOn) {
   EXPECT_EQ(markers.size(), status.pairs_in_bag);
 }
 
+std_srvs::Trigger::Response callTrigger(const std::string& service) {
+  std_srvs::Trigger trigger;
+  EXPECT_TRUE(ros::service::call(service, trigger)) << service << " did not answer";
+  return trigger.response;
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+// ~save and ~reset answered "success" and "the bag holds every kept pair" when nothing was
+// written (issue 12, item 4). Now success means the result file was written and read back, and
+// the pairs in the bag are counted from the file. Runs after RecordingStopsAndCollectingGoesOn:
+// the node is done and its bag holds fewer pairs than it kept.
+TEST(NodeDiskFull, SaveAndResetAnswerOnlyWhatTheyChecked) {
+  const std::string bag = ros::NodeHandle("~").param<std::string>("dataset_bag", "");
+  const std::string output = ros::NodeHandle("~").param<std::string>("output_file", "");
+  ASSERT_FALSE(output.empty());
+  ASSERT_TRUE(waitFor(240.0, [] { return g_observed.last_status.state_name == "done"; }));
+  // Frames after ~reset would start a new bag: wait until the player has finished.
+  int images = -1;
+  for (int quiet = 0; quiet < 4;) {
+    const int now = g_observed.input_images.load();
+    quiet = now == images ? quiet + 1 : 0;
+    images = now;
+    ros::WallDuration(0.5).sleep();
+  }
+  CalibrationStatus status;
+  {
+    std::lock_guard<std::mutex> lock(g_observed.mutex);
+    status = g_observed.last_status;
+  }
+  std::size_t on_disk = 0;
+  {
+    rosbag::Bag reader(bag, rosbag::bagmode::Read);
+    on_disk = rosbag::View(reader, rosbag::TopicQuery("/thermal_lidar_calibration/dataset_pair")).size();
+  }
+  const std::string holds = "holds " + std::to_string(on_disk) + " of the " +
+                            std::to_string(status.pairs_kept) + " kept pairs";
+
+  std_srvs::Trigger::Response r = callTrigger("calibration_node/save");
+  EXPECT_TRUE(r.success) << r.message;
+  EXPECT_TRUE(contains(r.message, "read back")) << r.message;
+  EXPECT_TRUE(contains(r.message, holds)) << r.message << " (expected '" << holds << "')";
+  EXPECT_TRUE(contains(r.message, "recording stopped")) << r.message;
+
+  // The result cannot be written (its temporary file's place is taken by a directory).
+  ASSERT_EQ(::mkdir((output + ".tmp").c_str(), 0755), 0);
+  r = callTrigger("calibration_node/save");
+  EXPECT_FALSE(r.success) << r.message;
+  EXPECT_TRUE(contains(r.message, "NOT written")) << r.message;
+  EXPECT_TRUE(contains(r.message, holds)) << r.message;
+  ::rmdir((output + ".tmp").c_str());
+
+  r = callTrigger("calibration_node/reset");
+  EXPECT_TRUE(contains(r.message, "deleted " + bag)) << r.message;
+  r = callTrigger("calibration_node/reset");
+  EXPECT_FALSE(contains(r.message, "deleted")) << r.message;
+  EXPECT_TRUE(contains(r.message, "did not exist")) << r.message;
+  r = callTrigger("calibration_node/save");
+  EXPECT_FALSE(r.success) << r.message;
+  EXPECT_TRUE(contains(r.message, "no result to write yet")) << r.message;
+  EXPECT_TRUE(contains(r.message, "no dataset bag on disk")) << r.message;
+  EXPECT_FALSE(contains(r.message, "holds")) << r.message;
+}
+
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, "node_hostile_test");
@@ -272,6 +345,7 @@ int main(int argc, char** argv) {
   ros::Subscriber status_sub = nh.subscribe("calibration_node/status", 100, onStatus);
   ros::Subscriber rosout_sub = nh.subscribe("/rosout", 1000, onRosout);
   ros::Subscriber diagnostics_sub = nh.subscribe("/diagnostics", 100, onDiagnostics);
+  ros::Subscriber image_sub = nh.subscribe("thermal/image_raw", 10, onInputImage);
   ros::AsyncSpinner spinner(2);
   spinner.start();
   const int result = RUN_ALL_TESTS();

@@ -76,7 +76,8 @@ class CalibrationNode {
   std::string startOptimization(const std::string& why);  // "" when started, else the refusal
   void handleOutcome(CalibrationWorker::Outcome outcome);
   void publishResult();
-  void writeResult();
+  // Writes ~output_file and reads it back; "" when the file holds the result, else why not.
+  std::string writeResult();
 
   // calibration_node_services.cpp
   bool onCalibrate(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);

@@ -36,6 +36,11 @@ class DatasetRecorder {
   // "" while recording (or when off); else why recording stopped, with path and free space.
   const std::string& stopReason() const { return stop_reason_; }
 
+  // For ~save: what the bag on disk holds, read back from the file (not the writer's count), in
+  // words: "the dataset bag <path> holds 12 of the 15 kept pairs (recording stopped: ...)", or
+  // that there is no bag on disk, or that it cannot be read. "" when not recording.
+  std::string describeOnDisk(std::size_t pairs_kept) const;
+
   void diagnose(NodeDiagnostics::Status& status) const;
 
  private:

@@ -79,5 +79,10 @@ struct DatasetBagContents {
 // std::runtime_error if the bag cannot be opened.
 DatasetBagContents readDatasetBag(const std::string& path);
 
+// The number of pairs the bag at `path` holds, read back from its index (one marker message per
+// pair), for answers that must be true rather than what the writer believes. Throws
+// std::runtime_error naming the bag when it cannot be read.
+std::size_t countDatasetBagPairs(const std::string& path);
+
 }  // namespace ros_io
 }  // namespace thermal_lidar_calibration
