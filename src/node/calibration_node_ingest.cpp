@@ -87,11 +87,10 @@ void CalibrationNode::onClusters(const sensor_msgs::PointCloud2::ConstPtr& msg) 
 void CalibrationNode::reportSyncFault(const std::string& topic,
                                       const FrameSynchronizer::AddOutcome& outcome) {
   if (outcome.fault.empty()) return;
-  if (fault_throttle_.shouldReport("stamp " + topic)) {
-    ROS_WARN("%s: %s (%llu messages refused for their stamps so far; repeats shown at most every "
-             "%.0f s)",
-             topic.c_str(), outcome.fault.c_str(),
-             static_cast<unsigned long long>(synchronizer_->droppedStamps()), kFaultLogPeriodS);
+  if (const auto held_back = fault_throttle_.admit(topic + ": " + outcome.fault)) {
+    ROS_WARN("%s: %s (%llu messages refused for their stamps so far)%s", topic.c_str(),
+             outcome.fault.c_str(), static_cast<unsigned long long>(synchronizer_->droppedStamps()),
+             fault_throttle_.heldBackText(*held_back).c_str());
   }
 }
 
@@ -114,21 +113,23 @@ void CalibrationNode::onFrame(const sensor_msgs::Image::ConstPtr& image,
   });
   const std::uint64_t nonfinite = builder_->counts().nonfinite_points_dropped - nonfinite_before;
   if (nonfinite > 0) {
-    ROS_WARN_THROTTLE(kFaultLogPeriodS, "%s: dropped %llu NaN/inf points of the cloud at %.3f (%llu so far)",
-                      clusters_topic_.c_str(), static_cast<unsigned long long>(nonfinite),
-                      clusters->header.stamp.toSec(),
-                      static_cast<unsigned long long>(builder_->counts().nonfinite_points_dropped));
+    if (const auto held_back = fault_throttle_.admit(clusters_topic_ + " NaN/inf points")) {
+      ROS_WARN("%s: dropped %llu NaN/inf points of the cloud at %.3f (%llu so far)%s",
+               clusters_topic_.c_str(), static_cast<unsigned long long>(nonfinite),
+               clusters->header.stamp.toSec(),
+               static_cast<unsigned long long>(builder_->counts().nonfinite_points_dropped),
+               fault_throttle_.heldBackText(*held_back).c_str());
+    }
   }
   if (outcome.decision == GateDecision::kBadMessage) {
     // Decoder errors name their topic; size checks against camera_info concern the mask.
     const std::string where =
         outcome.error.find('/') != std::string::npos ? "" : " (" + mask_topic_ + ")";
-    if (fault_throttle_.shouldReport(outcome.error)) {  // each kind of fault, throttled
-      ROS_WARN("bad frame at %.3f%s: %s (%llu bad so far; repeats of this fault are shown at most "
-               "every %.0f s)",
-               image->header.stamp.toSec(), where.c_str(), outcome.error.c_str(),
+    if (const auto held_back = fault_throttle_.admit(where + outcome.error)) {
+      ROS_WARN("bad frame at %.3f%s: %s (%llu bad so far)%s", image->header.stamp.toSec(),
+               where.c_str(), outcome.error.c_str(),
                static_cast<unsigned long long>(builder_->counts()[GateDecision::kBadMessage]),
-               kFaultLogPeriodS);
+               fault_throttle_.heldBackText(*held_back).c_str());
     }
     return;
   }

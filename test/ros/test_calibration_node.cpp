@@ -24,6 +24,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -301,6 +302,69 @@ TEST(NodeBadMessages, StaysUpCountsAndReportsEachFault) {
   EXPECT_TRUE(waitFor(1.0, said("/lidar/human_clusters", "label"))) << joined(g_observed.node_warnings);
   EXPECT_TRUE(waitFor(1.0, said("/thermal/human_mask", "80x64"))) << joined(g_observed.node_warnings);
   EXPECT_TRUE(waitFor(1.0, said("/lidar/human_clusters", "NaN"))) << joined(g_observed.node_warnings);
+}
+
+// One line per kind of fault, not per bad frame (issue 12, item 6): masks of ever-changing wrong
+// sizes made every warning's text different, and the text-keyed throttle let through 389 lines
+// for 474 bad frames. Now a burst gives at most one line, and the next line after the period
+// counts the frames it held back.
+TEST(NodeBadMessages, BadFrameWarningsAreThrottledPerKindAndCounted) {
+  ros::NodeHandle nh;
+  auto image_pub = nh.advertise<sensor_msgs::Image>("thermal/image_raw", 50);
+  auto mask_pub = nh.advertise<sensor_msgs::Image>("thermal/human_mask", 50);
+  auto cloud_pub = nh.advertise<sensor_msgs::PointCloud2>("lidar/human_clusters", 50);
+  ASSERT_TRUE(waitFor(10.0, [&] {
+    return image_pub.getNumSubscribers() > 0 && mask_pub.getNumSubscribers() > 0 &&
+           cloud_pub.getNumSubscribers() > 0;
+  }));
+  ros::WallDuration(6.0).sleep();  // the previous case's lines are older than the period (5 s)
+  const auto mask_lines = [] {
+    std::size_t n = 0;
+    for (const auto& w : g_observed.node_warnings) {
+      if (w.find("bad frame") != std::string::npos && w.find("human_mask") != std::string::npos) ++n;
+    }
+    return n;
+  };
+  std::size_t before = 0;
+  {
+    std::lock_guard<std::mutex> lock(g_observed.mutex);
+    before = mask_lines();
+  }
+  const std::uint32_t bad_before = g_observed.last_status.rejected_bad_message;
+  const int kBurst = 120;
+  const auto publishBadFrame = [&](int i) {
+    const ros::Time stamp = ros::Time::now();
+    image_pub.publish(monoImage(stamp, kWidth, kHeight, "mono8"));
+    mask_pub.publish(monoImage(stamp, kWidth / 2 + i % 37, kHeight / 2 + i % 11, "mono8"));
+    cloud_pub.publish(cloud(stamp, true, 0));
+  };
+  for (int i = 0; i < kBurst && ros::ok(); ++i) {
+    publishBadFrame(i);
+    ros::WallDuration(0.025).sleep();  // 3 s in all, within one period
+  }
+  ASSERT_TRUE(waitFor(10.0, [&] {
+    return g_observed.last_status.rejected_bad_message >= bad_before + kBurst * 9 / 10;
+  })) << g_observed.last_status;
+  std::size_t burst_lines = 0;
+  {
+    std::lock_guard<std::mutex> lock(g_observed.mutex);
+    burst_lines = mask_lines() - before;
+  }
+  EXPECT_EQ(burst_lines, 1u) << joined(g_observed.node_warnings);
+
+  ros::WallDuration(5.5).sleep();  // the period is over: the next bad frame is said, with a count
+  publishBadFrame(kBurst);
+  EXPECT_TRUE(waitFor(5.0, [&] {
+    for (const auto& w : g_observed.node_warnings) {
+      const std::size_t at = w.find(" more like it");
+      if (w.find("human_mask") == std::string::npos || at == std::string::npos) continue;
+      const std::size_t and_at = w.rfind("(and ", at);
+      if (and_at == std::string::npos) continue;
+      const int held_back = std::atoi(w.c_str() + and_at + 5);
+      if (held_back >= kBurst * 8 / 10) return true;
+    }
+    return false;
+  })) << joined(g_observed.node_warnings);
 }
 
 int main(int argc, char** argv) {

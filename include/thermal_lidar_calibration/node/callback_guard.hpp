@@ -35,9 +35,9 @@ class CallbackGuard {
 
  private:
   void report(const std::string& callback, const std::string& what) {
-    if (throttle_.shouldReport(callback)) {
-      ROS_ERROR("%s failed: %s; the node keeps running (repeats shown at most every %.0f s)",
-                callback.c_str(), what.c_str(), throttle_.periodS());
+    if (const auto held_back = throttle_.admit(callback + " failed: " + what)) {
+      ROS_ERROR("%s failed: %s; the node keeps running%s", callback.c_str(), what.c_str(),
+                throttle_.heldBackText(*held_back).c_str());
     }
   }
   FaultThrottle throttle_;
