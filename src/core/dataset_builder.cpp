@@ -82,14 +82,7 @@ OfferOutcome DatasetBuilder::admit(const std::function<Frame()>& decode, bool st
   try {
     frame = decode();
     checkFrame(frame, camera_);
-    const bool have_frames = !camera_frame_.empty() || !lidar_frame_.empty();
-    if (have_frames &&
-        (frame.camera_frame != camera_frame_ || frame.lidar_frame != lidar_frame_)) {
-      throw std::invalid_argument("frame ids changed: camera '" + frame.camera_frame +
-                                  "', lidar '" + frame.lidar_frame + "' but earlier pairs used '" +
-                                  camera_frame_ + "', '" + lidar_frame_ +
-                                  "': all frames must come from the same two sensors");
-    }
+    checkFrameIds(frame);
     people = countPeople(frame.mask, frame.labels);
     outcome.mask_people = people.mask_people;
     outcome.cluster_people = people.cluster_people;
@@ -121,11 +114,52 @@ OfferOutcome DatasetBuilder::admit(const std::function<Frame()>& decode, bool st
   pair.labels = std::move(frame.labels);
   pair.people = outcome.mask_people;
   pairs_.push_back(std::move(pair));
-  if (camera_frame_.empty() && lidar_frame_.empty()) {
-    camera_frame_ = frame.camera_frame;
-    lidar_frame_ = frame.lidar_frame;
+  if (pairs_.size() >= kLockPairs) {
+    ids_locked_ = true;
+    other_ids_.clear();
   }
   return outcome;
+}
+
+void DatasetBuilder::checkFrameIds(const Frame& frame) {
+  const bool have_ids = tentative_support_ > 0 || ids_locked_;
+  if (!have_ids || (frame.camera_frame == camera_frame_ && frame.lidar_frame == lidar_frame_)) {
+    if (!have_ids) {
+      camera_frame_ = frame.camera_frame;
+      lidar_frame_ = frame.lidar_frame;
+    }
+    if (!ids_locked_) ++tentative_support_;
+    refused_in_a_row_ = 0;
+    return;
+  }
+  const FrameIds ids(frame.camera_frame, frame.lidar_frame);
+  if (!ids_locked_) {
+    std::uint64_t& support = other_ids_[ids];
+    if (++support > tentative_support_) {
+      // These ids have been seen in more valid frames than the tentative ones: the tentative
+      // ids came from a few stray frames. Their pairs (fewer than kLockPairs) go.
+      pairs_dropped_for_ids_ += pairs_.size();
+      pairs_.clear();
+      camera_frame_ = ids.first;
+      lidar_frame_ = ids.second;
+      tentative_support_ = support;
+      other_ids_.clear();
+      refused_in_a_row_ = 0;
+      return;
+    }
+  }
+  ++refused_in_a_row_;
+  last_refused_ = ids;
+  throw std::invalid_argument("frame ids changed: camera '" + frame.camera_frame + "', lidar '" +
+                              frame.lidar_frame + "' but the dataset's pairs use '" +
+                              camera_frame_ + "', '" + lidar_frame_ +
+                              "': all frames must come from the same two sensors");
+}
+
+std::optional<FrameIdConflict> DatasetBuilder::frameIdConflict(std::uint64_t min_in_a_row) const {
+  if (!ids_locked_ || refused_in_a_row_ < min_in_a_row) return std::nullopt;
+  return FrameIdConflict{camera_frame_, lidar_frame_, last_refused_.first, last_refused_.second,
+                         refused_in_a_row_};
 }
 
 void DatasetBuilder::reset() {
@@ -133,6 +167,11 @@ void DatasetBuilder::reset() {
   gate_.reset();
   camera_frame_.clear();
   lidar_frame_.clear();
+  ids_locked_ = false;
+  tentative_support_ = 0;
+  other_ids_.clear();
+  pairs_dropped_for_ids_ = 0;
+  refused_in_a_row_ = 0;
 }
 
 }  // namespace thermal_lidar_calibration

@@ -9,6 +9,8 @@
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 #include "thermal_lidar_calibration/ros/node_parameter_source.hpp"
 
+#include <diagnostic_msgs/DiagnosticStatus.h>
+
 #include <sstream>
 
 namespace thermal_lidar_calibration {
@@ -36,6 +38,7 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   recorder_ = std::make_unique<DatasetRecorder>(params_.dataset_bag, params_.resume, pairs_resumed_);
   diagnostics_->add("dataset recording",
                     [this](NodeDiagnostics::Status& status) { recorder_->diagnose(status); });
+  diagnostics_->add("frame ids", [this](NodeDiagnostics::Status& status) { diagnoseFrameIds(status); });
   if (!builder_) {
     camera_info_sub_ = nh_.subscribe("thermal/camera_info", 1, &CalibrationNode::onCameraInfo, this);
   }
@@ -101,6 +104,28 @@ void CalibrationNode::createBuilder(const CameraModel& camera, const std::string
   builder_ = std::make_unique<DatasetBuilder>(camera, params_.core.gate);
   overlay_->setCamera(camera);
   ROS_INFO("camera intrinsics from %s: %s", source.c_str(), camera.describe().c_str());
+}
+
+void CalibrationNode::diagnoseFrameIds(NodeDiagnostics::Status& status) const {
+  using diagnostic_msgs::DiagnosticStatus;
+  const auto conflict = builder_ ? builder_->frameIdConflict() : std::nullopt;
+  if (conflict) {
+    status.summary(DiagnosticStatus::ERROR,
+                   frameIdConflictText(*conflict, builder_->pairs().size()));
+    status.add("other camera_frame", conflict->other_camera_frame);
+    status.add("other lidar_frame", conflict->other_lidar_frame);
+  } else if (!builder_ || builder_->cameraFrame().empty()) {
+    status.summary(DiagnosticStatus::OK, "no valid frame yet");
+  } else {
+    status.summary(DiagnosticStatus::OK, builder_->frameIdsLocked()
+                                             ? "locked to the dataset's frame ids"
+                                             : "tentative (fewer than 3 pairs kept)");
+  }
+  if (builder_) {
+    status.add("camera_frame", builder_->cameraFrame());
+    status.add("lidar_frame", builder_->lidarFrame());
+    status.add("pairs_dropped_for_frame_ids", builder_->pairsDroppedForFrameIds());
+  }
 }
 
 void CalibrationNode::onTimer(const ros::WallTimerEvent& /*event*/) {

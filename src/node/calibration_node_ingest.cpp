@@ -94,6 +94,36 @@ void CalibrationNode::reportSyncFault(const std::string& topic,
   }
 }
 
+std::string frameIdConflictText(const FrameIdConflict& c, std::size_t pairs) {
+  return std::to_string(c.frames_in_a_row) + " frames in a row have camera '" +
+         c.other_camera_frame + "', lidar '" + c.other_lidar_frame + "' but the " +
+         std::to_string(pairs) + " pairs kept are of camera '" + c.camera_frame + "', lidar '" +
+         c.lidar_frame + "': if the new ids are the sensors to calibrate, call ~reset (drops those " +
+         "pairs); otherwise remap the inputs so that one camera and one LiDAR reach the node";
+}
+
+// Frames that keep disagreeing with the dataset's frame ids are an error on ~status,
+// /diagnostics and the log: the node would otherwise sit at "collecting" and never finish.
+void CalibrationNode::reportFrameIdConflict() {
+  const auto conflict = builder_->frameIdConflict();
+  if (!conflict) {
+    if (frame_id_conflict_) {
+      frame_id_conflict_ = false;
+      setState(state_, "collecting again: frames with the dataset's frame ids arrive");
+    }
+    return;
+  }
+  const std::string text = frameIdConflictText(*conflict, builder_->pairs().size());
+  if (const auto held_back = fault_throttle_.admit("frame id conflict")) {
+    ROS_ERROR("%s%s", text.c_str(), fault_throttle_.heldBackText(*held_back).c_str());
+  }
+  if (!frame_id_conflict_) {
+    frame_id_conflict_ = true;
+    setState(state_, "error: " + text);
+    diagnostics_->publishNow();
+  }
+}
+
 void CalibrationNode::onFrame(const sensor_msgs::Image::ConstPtr& image,
                               const sensor_msgs::Image::ConstPtr& mask,
                               const sensor_msgs::PointCloud2::ConstPtr& clusters) {
@@ -121,6 +151,7 @@ void CalibrationNode::onFrame(const sensor_msgs::Image::ConstPtr& image,
                fault_throttle_.heldBackText(*held_back).c_str());
     }
   }
+  reportFrameIdConflict();
   if (outcome.decision == GateDecision::kBadMessage) {
     // Decoder errors name their topic; size checks against camera_info concern the mask.
     const std::string where =

@@ -298,13 +298,19 @@ CameraModel cameraModelFromMsg(const sensor_msgs::CameraInfo& msg) {
   }
 }
 
+std::string tfFrameId(const std::string& frame_id) {
+  const std::size_t first = frame_id.find_first_not_of('/');
+  return first == std::string::npos ? "" : frame_id.substr(first);
+}
+
 Frame decodeFrame(const sensor_msgs::Image& image, const sensor_msgs::Image& mask,
                   const sensor_msgs::PointCloud2& clusters, const std::string& image_topic,
                   const std::string& mask_topic, const std::string& clusters_topic) {
   Frame frame;
   frame.stamp_s = image.header.stamp.toSec();
-  frame.camera_frame = image.header.frame_id.empty() ? mask.header.frame_id : image.header.frame_id;
-  frame.lidar_frame = clusters.header.frame_id;
+  frame.camera_frame =
+      tfFrameId(image.header.frame_id.empty() ? mask.header.frame_id : image.header.frame_id);
+  frame.lidar_frame = tfFrameId(clusters.header.frame_id);
   frame.image = decodeMonoImage(image, image_topic);
   frame.mask = decodeMonoImage(mask, mask_topic);
   if (frame.image.size() != frame.mask.size()) {

@@ -367,6 +367,63 @@ TEST(NodeBadMessages, BadFrameWarningsAreThrottledPerKindAndCounted) {
   })) << joined(g_observed.node_warnings);
 }
 
+// Frame ids (issue 12, item 7): "/thermal_optical" and "thermal_optical" are one sensor (the
+// leading '/' is stripped at ingest), and frames that keep arriving with other ids than the
+// dataset's are an error on ~status with both ids and the remedy, not a silent wait.
+TEST(NodeBadMessages, SlashedIdsAreTheSameSensorsAndAPersistentConflictIsAnError) {
+  ros::NodeHandle nh;
+  auto image_pub = nh.advertise<sensor_msgs::Image>("thermal/image_raw", 50);
+  auto mask_pub = nh.advertise<sensor_msgs::Image>("thermal/human_mask", 50);
+  auto cloud_pub = nh.advertise<sensor_msgs::PointCloud2>("lidar/human_clusters", 50);
+  ASSERT_TRUE(waitFor(10.0, [&] {
+    return image_pub.getNumSubscribers() > 0 && mask_pub.getNumSubscribers() > 0 &&
+           cloud_pub.getNumSubscribers() > 0;
+  }));
+  ros::WallDuration(0.5).sleep();
+  const auto publishPerson = [&](const std::string& camera_frame, const std::string& lidar_frame) {
+    const ros::Time stamp = ros::Time::now();
+    sensor_msgs::Image image = monoImage(stamp, kWidth, kHeight, "mono8");
+    sensor_msgs::Image mask = image;
+    for (int v = 40; v < 90; ++v) {
+      for (int u = 70; u < 85; ++u) mask.data[static_cast<std::size_t>(v) * kWidth + u] = 1;
+    }
+    image.header.frame_id = mask.header.frame_id = camera_frame;
+    sensor_msgs::PointCloud2 points = cloud(stamp, true, 0);
+    points.header.frame_id = lidar_frame;
+    image_pub.publish(image);
+    mask_pub.publish(mask);
+    cloud_pub.publish(points);
+    ros::WallDuration(0.05).sleep();
+  };
+  const std::uint32_t kept_before = g_observed.last_status.pairs_kept;
+  const std::uint32_t bad_before = g_observed.last_status.rejected_bad_message;
+  // tf1-style ids, as FieldSAFE writes them: the same sensors as the earlier frames.
+  for (int i = 0; i < 4; ++i) publishPerson("/thermal_optical", "/velodyne");
+  for (int i = 0; i < 2; ++i) publishPerson("thermal_optical", "velodyne");
+  EXPECT_TRUE(waitFor(5.0, [&] { return g_observed.last_status.pairs_kept >= kept_before + 6; }))
+      << g_observed.last_status;
+  EXPECT_EQ(g_observed.last_status.rejected_bad_message, bad_before) << g_observed.last_status;
+
+  for (int i = 0; i < 12; ++i) publishPerson("other_camera", "other_lidar");
+  EXPECT_TRUE(waitFor(5.0, [&] {
+    const std::string& m = g_observed.last_status.message;
+    return m.find("error:") != std::string::npos && m.find("other_camera") != std::string::npos &&
+           m.find("'thermal_optical'") != std::string::npos && m.find("~reset") != std::string::npos;
+  })) << g_observed.last_status;
+  EXPECT_GE(g_observed.last_status.pairs_kept, kept_before + 6);  // nothing kept is dropped
+  EXPECT_TRUE(waitFor(5.0, [] {
+    for (const auto& w : g_observed.node_warnings) {
+      if (w.find("frames in a row have camera 'other_camera'") != std::string::npos) return true;
+    }
+    return false;
+  })) << joined(g_observed.node_warnings);
+  // Frames of the dataset's sensors again: the error goes.
+  publishPerson("thermal_optical", "velodyne");
+  EXPECT_TRUE(waitFor(5.0, [&] {
+    return g_observed.last_status.message.find("error:") == std::string::npos;
+  })) << g_observed.last_status;
+}
+
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, "calibration_node_test");

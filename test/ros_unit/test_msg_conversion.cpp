@@ -438,3 +438,12 @@ TEST(DecodeFrame, CombinesTheThreeMessages) {
                 .find("/m: image encoding 'rgb8'"),
             std::string::npos);
 }
+
+// FieldSAFE writes tf1-style ids ("/velodyne"); tf2 rejects them and they name the same sensor.
+TEST(MsgConversion, FrameIdsLoseTheirLeadingSlash) {
+  EXPECT_EQ(tlc::ros_io::tfFrameId("/velodyne"), "velodyne");
+  EXPECT_EQ(tlc::ros_io::tfFrameId("//thermal_optical"), "thermal_optical");
+  EXPECT_EQ(tlc::ros_io::tfFrameId("base_link/velodyne"), "base_link/velodyne");
+  EXPECT_EQ(tlc::ros_io::tfFrameId("/"), "");
+  EXPECT_EQ(tlc::ros_io::tfFrameId(""), "");
+}

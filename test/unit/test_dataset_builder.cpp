@@ -263,3 +263,74 @@ TEST(DatasetBuilder, RestoredFramesAreCheckedLikeLiveOnesButNotGatedAgain) {
   // No pending skip after reset.
   EXPECT_EQ(builder.offer([] { return frame(1, 1); }).decision, GateDecision::kKept);
 }
+
+namespace {
+
+tlc::Frame frameWithIds(const std::string& camera_frame, const std::string& lidar_frame,
+                        double stamp) {
+  tlc::Frame f = frame(1, 1, 5, stamp);
+  f.camera_frame = camera_frame;
+  f.lidar_frame = lidar_frame;
+  return f;
+}
+
+tlc::OfferOutcome offer(tlc::DatasetBuilder& builder, const tlc::Frame& f) {
+  return builder.offer([&] { return f; });
+}
+
+}  // namespace
+
+// One stray frame with other ids came first, and 1,197 of 1,201 frames of the real drive were
+// refused as "frame ids changed" (issue 12, item 7). A single frame no longer decides the ids.
+TEST(DatasetBuilder, OneStrayFrameFirstDoesNotBlockTheDrive) {
+  tlc::DatasetBuilder builder(camera(), gate(0));
+  EXPECT_EQ(offer(builder, frameWithIds("other_camera", "other_lidar", 1.0)).decision,
+            GateDecision::kKept);
+  EXPECT_FALSE(builder.frameIdsLocked());
+  // The drive's first frame is refused (one against one), its second outnumbers the stray one.
+  EXPECT_EQ(offer(builder, frameWithIds("thermal_optical", "velodyne", 2.0)).decision,
+            GateDecision::kBadMessage);
+  EXPECT_EQ(offer(builder, frameWithIds("thermal_optical", "velodyne", 3.0)).decision,
+            GateDecision::kKept);
+  EXPECT_EQ(builder.cameraFrame(), "thermal_optical");
+  EXPECT_EQ(builder.lidarFrame(), "velodyne");
+  EXPECT_EQ(builder.pairsDroppedForFrameIds(), 1u);
+  ASSERT_EQ(builder.pairs().size(), 1u);
+  EXPECT_DOUBLE_EQ(builder.pairs()[0].stamp_s, 3.0);
+  for (int i = 0; i < 20; ++i) {
+    EXPECT_EQ(offer(builder, frameWithIds("thermal_optical", "velodyne", 4.0 + i)).decision,
+              GateDecision::kKept);
+  }
+  EXPECT_EQ(builder.pairs().size(), 21u);
+  EXPECT_TRUE(builder.frameIdsLocked());
+  EXPECT_FALSE(builder.frameIdConflict());
+}
+
+// Once kLockPairs pairs agree, the ids hold: a stray frame is refused, and frames that keep
+// disagreeing are reported with both ids; a frame with the dataset's ids ends the report.
+TEST(DatasetBuilder, LockedIdsRefuseOthersAndReportAConflictThatPersists) {
+  tlc::DatasetBuilder builder(camera(), gate(0));
+  for (int i = 0; i < 3; ++i) offer(builder, frameWithIds("thermal_optical", "velodyne", 1.0 + i));
+  ASSERT_TRUE(builder.frameIdsLocked());
+  for (int i = 0; i < 9; ++i) {
+    const tlc::OfferOutcome out = offer(builder, frameWithIds("cam2", "lidar2", 10.0 + i));
+    EXPECT_EQ(out.decision, GateDecision::kBadMessage);
+    EXPECT_NE(out.error.find("frame ids changed: camera 'cam2', lidar 'lidar2'"), std::string::npos)
+        << out.error;
+    EXPECT_FALSE(builder.frameIdConflict(10));
+  }
+  offer(builder, frameWithIds("cam2", "lidar2", 19.0));
+  const auto conflict = builder.frameIdConflict(10);
+  ASSERT_TRUE(conflict);
+  EXPECT_EQ(conflict->camera_frame, "thermal_optical");
+  EXPECT_EQ(conflict->lidar_frame, "velodyne");
+  EXPECT_EQ(conflict->other_camera_frame, "cam2");
+  EXPECT_EQ(conflict->other_lidar_frame, "lidar2");
+  EXPECT_EQ(conflict->frames_in_a_row, 10u);
+  EXPECT_EQ(builder.pairs().size(), 3u);  // never dropped once locked
+  offer(builder, frameWithIds("thermal_optical", "velodyne", 30.0));
+  EXPECT_FALSE(builder.frameIdConflict(10));
+  builder.reset();
+  EXPECT_FALSE(builder.frameIdsLocked());
+  EXPECT_EQ(offer(builder, frameWithIds("cam2", "lidar2", 40.0)).decision, GateDecision::kKept);
+}

@@ -6,8 +6,12 @@
 #include "thermal_lidar_calibration/core/camera_model.hpp"
 #include "thermal_lidar_calibration/core/frame_gate.hpp"
 
+#include <cstdint>
 #include <functional>
+#include <map>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace thermal_lidar_calibration {
@@ -19,8 +23,23 @@ struct OfferOutcome {
   int cluster_people = 0;
 };
 
+// Frames whose ids keep disagreeing with the ids the dataset is locked to (see DatasetBuilder).
+struct FrameIdConflict {
+  std::string camera_frame, lidar_frame;              // the dataset's (locked) ids
+  std::string other_camera_frame, other_lidar_frame;  // the latest disagreeing frame's ids
+  std::uint64_t frames_in_a_row = 0;                  // valid frames refused in a row for them
+};
+
+// Frame ids: one dataset holds one pair of sensors, so frames with other ids are refused. But a
+// single frame must not decide the ids of a drive (one stray frame first would block the whole
+// drive): until kLockPairs pairs are kept, the ids are tentative, and when valid frames with other
+// ids outnumber the frames that support the tentative ids, the builder switches to those ids
+// and drops the few pairs it had (counted in pairsDroppedForFrameIds()). Once locked, frames
+// with other ids are refused, and frameIdConflict() reports when they keep coming.
 class DatasetBuilder {
  public:
+  static constexpr std::size_t kLockPairs = 3;
+
   DatasetBuilder(CameraModel camera, GateConfig config);
 
   // Offer one synchronized candidate frame. `decode` runs only if the frame is not skipped; it
@@ -39,14 +58,27 @@ class DatasetBuilder {
   const CameraModel& camera() const { return camera_; }
   const std::string& cameraFrame() const { return camera_frame_; }
   const std::string& lidarFrame() const { return lidar_frame_; }
+  bool frameIdsLocked() const { return ids_locked_; }
+  std::uint64_t pairsDroppedForFrameIds() const { return pairs_dropped_for_ids_; }
+  // Set when at least `min_in_a_row` valid frames in a row had other ids than the locked ones.
+  std::optional<FrameIdConflict> frameIdConflict(std::uint64_t min_in_a_row = 10) const;
 
  private:
+  using FrameIds = std::pair<std::string, std::string>;  // camera, lidar
   OfferOutcome admit(const std::function<Frame()>& decode, bool stored);
+  // Throws std::invalid_argument when `frame`'s ids are refused; may switch tentative ids.
+  void checkFrameIds(const Frame& frame);
 
   CameraModel camera_;
   FrameGate gate_;
   std::vector<CalibrationPair> pairs_;
   std::string camera_frame_, lidar_frame_;
+  bool ids_locked_ = false;
+  std::uint64_t tentative_support_ = 0;         // valid frames with the tentative ids
+  std::map<FrameIds, std::uint64_t> other_ids_;  // valid frames with other ids, while tentative
+  std::uint64_t pairs_dropped_for_ids_ = 0;
+  std::uint64_t refused_in_a_row_ = 0;
+  FrameIds last_refused_;
 };
 
 }  // namespace thermal_lidar_calibration

@@ -37,6 +37,9 @@ namespace ros_io {
 // The state names of CalibrationStatus::state (COLLECTING, OPTIMIZING, DONE, FAILED).
 const char* stateName(std::uint8_t state);
 
+// The frame-id conflict in words, with both ids and the remedy (for ~status, /diagnostics, log).
+std::string frameIdConflictText(const FrameIdConflict& conflict, std::size_t pairs);
+
 // One class for the executable (calibration_node) and the nodelet (CalibrationNodelet). Its
 // member functions live in one file per responsibility:
 //   calibration_node.cpp           construction: parameters, subscriptions, services, timer
@@ -61,6 +64,7 @@ class CalibrationNode {
   void readParameters();
   void createBuilder(const CameraModel& camera, const std::string& source);
   void onTimer(const ros::WallTimerEvent& event);
+  void diagnoseFrameIds(NodeDiagnostics::Status& status) const;
 
   // calibration_node_ingest.cpp (callbacks, main thread)
   void resumeDataset();
@@ -68,6 +72,7 @@ class CalibrationNode {
   void onMask(const sensor_msgs::Image::ConstPtr& msg);
   void onClusters(const sensor_msgs::PointCloud2::ConstPtr& msg);
   void reportSyncFault(const std::string& topic, const FrameSynchronizer::AddOutcome& outcome);
+  void reportFrameIdConflict();
   void onCameraInfo(const sensor_msgs::CameraInfo::ConstPtr& msg);
   void onFrame(const sensor_msgs::Image::ConstPtr& image, const sensor_msgs::Image::ConstPtr& mask,
                const sensor_msgs::PointCloud2::ConstPtr& clusters);
@@ -101,6 +106,7 @@ class CalibrationNode {
   std::unique_ptr<NodeDiagnostics> diagnostics_;  // /diagnostics; parts add their tasks
   std::set<long long> stored_stamps_ns_;  // image stamps of pairs in the dataset (no duplicates)
   std::size_t pairs_resumed_ = 0;
+  bool frame_id_conflict_ = false;  // frames keep arriving with other ids than the dataset's
 
   std::unique_ptr<FrameSynchronizer> synchronizer_;
   std::unique_ptr<image_transport::ImageTransport> it_;

@@ -36,6 +36,10 @@ std::vector<Eigen::Vector3f> decodeCloudPoints(const sensor_msgs::PointCloud2& m
 CameraModel cameraModelFromMsg(const sensor_msgs::CameraInfo& msg);
 sensor_msgs::CameraInfo cameraInfoFromModel(const CameraModel& camera);
 
+// A header frame_id as tf2 accepts it: without leading '/' (tf1 style, as FieldSAFE's bags
+// write them; tf2 rejects such ids, and "/velodyne" and "velodyne" are one sensor).
+std::string tfFrameId(const std::string& frame_id);
+
 // One synchronized candidate: image, mask and clusters decoded into a core Frame.
 Frame decodeFrame(const sensor_msgs::Image& image, const sensor_msgs::Image& mask,
                   const sensor_msgs::PointCloud2& clusters, const std::string& image_topic,
