@@ -90,8 +90,9 @@ void addLidarRows(ParameterTable<DetectionParameters>& t) {
   person.real("lidar_max_range_m", &LidarPersonConfig::max_range_m, aboveRange(0, 1000), "m",
               "farthest person (horizontal distance of its centre)");
   person.real("lidar_min_azimuth_deg", &LidarPersonConfig::min_azimuth_deg, closedRange(-180, 180), "deg",
-              "bearing window of person centres (0 = LiDAR +x, positive towards +y): set it to the camera's field "
-              "of view so the LiDAR counts only people the camera can see", "below lidar_max_azimuth_deg");
+              "bearing window of person centres (0 = LiDAR +x, positive towards +y): the camera's field "
+              "of view with a margin, so the LiDAR counts only people the camera can see; the default suits a "
+              "camera facing forward (+x)", "below lidar_max_azimuth_deg");
   person.real("lidar_max_azimuth_deg", &LidarPersonConfig::max_azimuth_deg, closedRange(-180, 180), "deg",
               "upper end of the bearing window");
   person.real("lidar_max_object_height_m", &LidarPersonConfig::max_object_height_m, aboveRange(0, 100), "m",
@@ -131,6 +132,15 @@ void addLidarRows(ParameterTable<DetectionParameters>& t) {
 
 ParameterTable<DetectionParameters> makeDetectionParameterTable() {
   ParameterTable<DetectionParameters> t;
+  auto raw = t.fields();
+  t.section("Raw thermal input (detectors; issue #7)");
+  raw.choice("thermal_input_flip", &DetectionParameters::input_flip,
+             {{"none", detection::ImageFlip::kNone},
+              {"vertical", detection::ImageFlip::kVertical},
+              {"horizontal", detection::ImageFlip::kHorizontal},
+              {"both", detection::ImageFlip::kBoth}},
+             "must be none, vertical, horizontal or both",
+             "flip of the raw thermal image before segmentation and calibration (FieldSAFE: see README)");
   addThermalRows(t);
   addLidarRows(t);
   return t;

@@ -102,13 +102,27 @@ void checkBagTopics(const std::vector<BagTopicInfo>& topics, const BagTopics& wa
                                 wanted.image + ", " + wanted.mask + ", " + wanted.clusters +
                                 " and " + wanted.camera_info);
   }
-  const struct {
+  struct Required {
     const std::string& topic;
     const char* type;
     const char* flag;
-  } required[] = {{wanted.image, "sensor_msgs/Image", "--image-topic"},
-                  {wanted.mask, "sensor_msgs/Image", "--mask-topic"},
-                  {wanted.clusters, "sensor_msgs/PointCloud2", "--clusters-topic"}};
+  };
+  std::vector<Required> required = {{wanted.image, "sensor_msgs/Image", "--image-topic"}};
+  if (wanted.detect) {
+    required.push_back({wanted.points, "sensor_msgs/PointCloud2", "--points-topic"});
+  } else {
+    required.push_back({wanted.mask, "sensor_msgs/Image", "--mask-topic"});
+    required.push_back({wanted.clusters, "sensor_msgs/PointCloud2", "--clusters-topic"});
+    // Raw sensor data only: the person detectors make the mask and clusters.
+    const BagTopicInfo* points = findTopic(topics, wanted.points);
+    const bool has_people = findTopic(topics, wanted.mask) || findTopic(topics, wanted.clusters);
+    if (points && points->messages > 0 && !has_people) {
+      throw std::invalid_argument(
+          "bag " + bag_path + " has raw " + wanted.points + " but no " + wanted.mask + " or " +
+          wanted.clusters + ": pass --detect to find the people with the built-in detectors " +
+          "(or --mask-topic / --clusters-topic if your own detectors' topics have other names)");
+    }
+  }
   for (const auto& r : required) {
     const BagTopicInfo* info = findTopic(topics, r.topic);
     if (!info || info->messages == 0) {
@@ -153,8 +167,24 @@ CameraModel cameraModelFromBag(rosbag::Bag& bag, const std::string& topic,
 }
 
 BagIngestStats ingestBag(rosbag::Bag& bag, const BagTopics& topics, const CoreParameters& params,
-                         DatasetBuilder& builder, const IngestCallbacks& callbacks) {
+                         DatasetBuilder& builder, const IngestCallbacks& callbacks,
+                         PersonDetectionAdapter* detectors) {
+  if (topics.detect && !detectors) throw std::logic_error("ingestBag: detect without detectors");
   BagIngestStats stats;
+  // One line for the first of each distinct error (at most a few kinds), the rest counted.
+  const auto report_bad = [&](double stamp_s, const std::string& error) {
+    const std::uint64_t seen = ++stats.bad_message_errors[error];
+    if (seen != 1 || !callbacks.warn) return;
+    const std::size_t distinct = stats.bad_message_errors.size();
+    if (distinct <= kMaxDistinctWarnings) {
+      char stamp[32];
+      std::snprintf(stamp, sizeof(stamp), "%.3f", stamp_s);
+      callbacks.warn(std::string("bad frame at t = ") + stamp + " s: " + error +
+                     " (counted; later ones with this error not shown)");
+    } else if (distinct == kMaxDistinctWarnings + 1) {
+      callbacks.warn("more distinct bad-frame errors: not shown, counted in the summary");
+    }
+  };
   const auto on_frame = [&](const sensor_msgs::Image::ConstPtr& image,
                             const sensor_msgs::Image::ConstPtr& mask,
                             const sensor_msgs::PointCloud2::ConstPtr& clusters) {
@@ -163,19 +193,8 @@ BagIngestStats ingestBag(rosbag::Bag& bag, const BagTopics& topics, const CorePa
       return decodeFrame(*image, *mask, *clusters, topics.image, topics.mask, topics.clusters);
     });
     if (outcome.decision != GateDecision::kBadMessage) return;
-    const std::string error = outcome.error.empty() ? "undecodable frame" : outcome.error;
-    const std::uint64_t seen = ++stats.bad_message_errors[error];
-    if (seen == 1 && callbacks.warn) {
-      const std::size_t distinct = stats.bad_message_errors.size();
-      if (distinct <= kMaxDistinctWarnings) {
-        char stamp[32];
-        std::snprintf(stamp, sizeof(stamp), "%.3f", image->header.stamp.toSec());
-        callbacks.warn(std::string("bad frame at t = ") + stamp + " s: " + error +
-                       " (counted; later ones with this error not shown)");
-      } else if (distinct == kMaxDistinctWarnings + 1) {
-        callbacks.warn("more distinct bad-frame errors: not shown, counted in the summary");
-      }
-    }
+    report_bad(image->header.stamp.toSec(),
+               outcome.error.empty() ? "undecodable frame" : outcome.error);
   };
   FrameSynchronizer sync(params.sync_queue_size, params.sync_slop_s, on_frame);
 
@@ -189,6 +208,26 @@ BagIngestStats ingestBag(rosbag::Bag& bag, const BagTopics& topics, const CorePa
   };
 
   std::vector<std::string> wanted = {topics.image, topics.mask, topics.clusters};
+  if (topics.detect) wanted = {topics.image, topics.points};
+  // --detect: the detectors make each raw message into what a mask / clusters topic would carry;
+  // a message they cannot read is a bad frame like any other.
+  const auto add_detected = [&](const rosbag::MessageInstance& m) {
+    try {
+      if (m.getTopic() == topics.points) {
+        const auto cloud = m.instantiate<sensor_msgs::PointCloud2>();
+        if (!cloud) return;
+        note(m.getTopic(), sync.addClusters(detectors->detect(*cloud, m.getTopic()).clusters));
+      } else {
+        const auto image = m.instantiate<sensor_msgs::Image>();
+        if (!image) return;
+        const SegmentedImage seg = detectors->segment(image, m.getTopic());
+        note(m.getTopic(), sync.addImage(seg.image));
+        note(topics.mask, sync.addMask(seg.mask));
+      }
+    } catch (const std::invalid_argument& e) {
+      report_bad(m.getTime().toSec(), e.what());
+    }
+  };
   try {
     rosbag::View view(bag, rosbag::TopicQuery(wanted));
     stats.messages_total = view.size();
@@ -196,7 +235,9 @@ BagIngestStats ingestBag(rosbag::Bag& bag, const BagTopics& topics, const CorePa
       const rosbag::MessageInstance& m = *it;
       ++stats.messages_read;
       try {
-        if (m.getTopic() == topics.clusters) {
+        if (topics.detect) {
+          add_detected(m);
+        } else if (m.getTopic() == topics.clusters) {
           note(m.getTopic(), sync.addClusters(m.instantiate<sensor_msgs::PointCloud2>()));
         } else if (m.getTopic() == topics.image) {
           note(m.getTopic(), sync.addImage(m.instantiate<sensor_msgs::Image>()));

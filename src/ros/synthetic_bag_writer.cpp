@@ -4,6 +4,7 @@
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 
 #include <boost/make_shared.hpp>
+#include <sensor_msgs/point_cloud2_iterator.h>
 #include <tf2_msgs/TFMessage.h>
 
 #include <random>
@@ -26,6 +27,36 @@ boost::shared_ptr<ros::M_string> latchedConnectionHeader() {
   (*header)["callerid"] = "/make_synthetic_bag";
   (*header)["latching"] = "1";
   return header;
+}
+
+// A raw scan as a Velodyne driver's pointcloud nodelet writes it (x, y, z, intensity, ring),
+// plus uint32 truth_id: the person each point lies on (0 = none), for scoring detectors.
+sensor_msgs::PointCloud2 encodeRawScan(const syn::SyntheticFrame& f, const std::string& frame_id,
+                                       double stamp_s) {
+  sensor_msgs::PointCloud2 msg;
+  msg.header.frame_id = frame_id;
+  msg.header.stamp = ros::Time(stamp_s);
+  sensor_msgs::PointCloud2Modifier modifier(msg);
+  modifier.setPointCloud2Fields(
+      6, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1, sensor_msgs::PointField::FLOAT32, "z", 1,
+      sensor_msgs::PointField::FLOAT32, "intensity", 1, sensor_msgs::PointField::FLOAT32, "ring", 1,
+      sensor_msgs::PointField::UINT16, "truth_id", 1, sensor_msgs::PointField::UINT32);
+  modifier.resize(f.full_points.size());
+  msg.height = 1;
+  msg.width = static_cast<std::uint32_t>(f.full_points.size());
+  msg.is_dense = true;
+  sensor_msgs::PointCloud2Iterator<float> x(msg, "x"), y(msg, "y"), z(msg, "z"), in(msg, "intensity");
+  sensor_msgs::PointCloud2Iterator<std::uint16_t> ring(msg, "ring");
+  sensor_msgs::PointCloud2Iterator<std::uint32_t> id(msg, "truth_id");
+  for (std::size_t i = 0; i < f.full_points.size(); ++i, ++x, ++y, ++z, ++in, ++ring, ++id) {
+    *x = f.full_points[i].x();
+    *y = f.full_points[i].y();
+    *z = f.full_points[i].z();
+    *in = f.full_intensity[i];
+    *ring = f.full_ring[i];
+    *id = f.full_truth_id[i];
+  }
+  return msg;
 }
 
 }  // namespace
@@ -66,7 +97,9 @@ void SyntheticBagWriter::write(const syn::SyntheticFrame& f) {
   bag_.write("/thermal/human_mask", ros::Time(t_mask), encodeMonoImage(f.mask, camera_frame, t_mask));
   bag_.write("/lidar/human_clusters", ros::Time(t_clusters),
              encodeClusters(f.cluster_points, f.cluster_labels, lidar_frame, t_clusters));
-  if (config_.full_cloud) {
+  if (config_.raw) {
+    bag_.write("/lidar/points", ros::Time(t_clusters), encodeRawScan(f, lidar_frame, t_clusters));
+  } else if (config_.full_cloud) {
     bag_.write("/lidar/points", ros::Time(t_clusters),
                encodePointsWithIntensity(f.full_points, f.full_intensity, lidar_frame, t_clusters));
   }

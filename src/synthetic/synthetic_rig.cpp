@@ -142,6 +142,9 @@ std::vector<WorldObject> SyntheticRig::snapshot(int index) const {
     obj.solid = item.solid.transformed(T_lidar_world);
     obj.clutter_id = item.id;
     obj.grey_level = 72.0 + 7.0 * (item.id % 5);
+    // Raw data: every fourth post or bush is sun-heated into the body band (~300 K), a warm
+    // confounder only its shape tells from a person.
+    if (config_.raw && item.id % 4 == 0) obj.grey_level = 180.0 + 3.0 * (item.id % 5);
     objects.push_back(std::move(obj));
   }
   removePeopleSeenInEmptyRegion(objects, index);
@@ -317,7 +320,22 @@ SyntheticFrame SyntheticRig::renderSnapshot(const std::vector<WorldObject>& obje
   const double drift = 3.0 * std::sin(0.05 * stamp_s);
   frame.image = rendererAt(index).renderImage(owners, objects, config_.image_depth, noise.image_noise, drift, rng_image);
 
-  if (config_.full_cloud) {
+  if (config_.raw) {
+    for (const auto& r : returns) {
+      if (r.range_m > config_.raw_cloud_max_range_m) continue;
+      frame.full_points.push_back(r.point);
+      float intensity = 15.f + static_cast<float>(r.beam % 4);
+      std::uint32_t truth_id = 0;
+      if (r.object >= 0) {
+        const WorldObject& obj = objects[static_cast<std::size_t>(r.object)];
+        intensity = obj.isPerson() ? 80.f : 45.f;
+        truth_id = obj.isPerson() ? static_cast<std::uint32_t>(obj.person_id) : 0u;
+      }
+      frame.full_intensity.push_back(intensity);
+      frame.full_ring.push_back(static_cast<std::uint16_t>(r.beam));
+      frame.full_truth_id.push_back(truth_id);
+    }
+  } else if (config_.full_cloud) {
     for (const auto& r : returns) {
       if (r.azimuth % config_.full_cloud_azimuth_step != 0 || r.range_m > config_.full_cloud_max_range_m) continue;
       if (r.object < 0 && r.beam % 2 != 0) continue;  // ground: every second beam is plenty

@@ -149,6 +149,10 @@ cv::Mat ThermalRenderer::renderImage(const cv::Mat& owners, const std::vector<Wo
       grey += std::round(column_noise[static_cast<std::size_t>(u)]) + speckle.at<float>(v, u);
       if (image_depth == ImageDepth::kMono8) {
         out.at<std::uint8_t>(v, u) = static_cast<std::uint8_t>(std::clamp(std::lround(grey), 0L, 255L));
+      } else if (image_depth == ImageDepth::kMono16Radiometric) {
+        const double kelvin = kRawKelvinAtGreyZero + kRawKelvinPerGrey * grey;
+        out.at<std::uint16_t>(v, u) =
+            static_cast<std::uint16_t>(std::clamp(std::lround(kelvin / kRawKelvinPerCount), 0L, 65535L));
       } else {
         out.at<std::uint16_t>(v, u) =
             static_cast<std::uint16_t>(std::clamp(std::lround(7000.0 + 16.0 * grey), 0L, 65535L));

@@ -14,6 +14,7 @@
 #include "thermal_lidar_calibration/node/parameter_catalog.hpp"
 
 #include <atomic>
+#include <memory>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -62,6 +63,16 @@ CoreParameters loadParameters(const CalibrateBagOptions& options) {
   return params;
 }
 
+// The detectors' keys of --config (the same keys the detection nodelets read).
+DetectionParameters loadDetection(const CalibrateBagOptions& options) {
+  if (options.config.empty()) return DetectionParameters{};
+  try {
+    return loadDetectionParameters(*makeYamlParameterSource(options.config));
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("--config " + options.config + ": " + e.what());
+  }
+}
+
 std::string algorithmText(const CalibrationConfig& c) {
   return std::string("Algorithm ") + (c.algorithm == Algorithm::kPlain ? "1" : "2") +
          ", refine " + (c.refine.mode == RefineMode::kNone ? "none" : "local") + ", seed " +
@@ -74,7 +85,8 @@ std::string noPairsMessage(const BagIngestStats& stats, const RejectionCounts& c
     char slop[32];
     std::snprintf(slop, sizeof(slop), "%g", params.sync_slop_s);
     return "no synchronized frames: read " + std::to_string(stats.messages_read) +
-           " messages on " + topics.image + ", " + topics.mask + ", " + topics.clusters +
+           " messages on " + topics.image + ", " +
+           (topics.detect ? topics.points : topics.mask + ", " + topics.clusters) +
            " but none matched within sync_slop = " + slop +
            " s; check the header stamps or raise sync_slop in --config" +
            (stats.damage.empty() ? "" : "; " + stats.damage);
@@ -86,6 +98,10 @@ std::string noPairsMessage(const BagIngestStats& stats, const RejectionCounts& c
     for (const auto& kv : stats.bad_message_errors) bad += kv.second;
     msg += "; " + std::to_string(bad) + " bad frames, e.g. " +
            stats.bad_message_errors.begin()->first;
+  } else if (topics.detect) {
+    msg += "; the detectors never saw the same number of people in the image and the cloud: "
+           "try detect_people on a frame of each (radiometric scale kelvin_per_count, "
+           "thermal_input_flip, lidar_max_range_m)";
   } else {
     msg += "; check that masks and clusters see the same people";
   }
@@ -116,7 +132,9 @@ int runCalibrateBag(const CalibrateBagOptions& options) {
   if (!options.truth.empty()) truth = readExtrinsicFile(options.truth);
 
   BagTopics topics{options.image_topic, options.mask_topic, options.clusters_topic,
-                   options.camera_info_topic};
+                   options.camera_info_topic, options.points_topic, options.detect};
+  std::unique_ptr<PersonDetectionAdapter> detectors;
+  if (options.detect) detectors = std::make_unique<PersonDetectionAdapter>(loadDetection(options));
   rosbag::Bag bag;
   openBag(bag, options.bag);
   const std::vector<BagTopicInfo> bag_topics = listBagTopics(bag);
@@ -151,7 +169,7 @@ int runCalibrateBag(const CalibrateBagOptions& options) {
                     " frames, " + std::to_string(b.pairs().size()) + " pairs kept");
     return !g_interrupted;
   };
-  const BagIngestStats stats = ingestBag(bag, topics, params, builder, callbacks);
+  const BagIngestStats stats = ingestBag(bag, topics, params, builder, callbacks, detectors.get());
   bag.close();
   progress.update("read: " + std::to_string(stats.messages_read) + " messages, " +
                       std::to_string(stats.frames) + " frames, " +

@@ -41,6 +41,10 @@ std::string calibrateBagUsage() {
       "  --mask-topic T           person mask          (default /thermal/human_mask)\n"
       "  --clusters-topic T       labelled person cloud (default /lidar/human_clusters)\n"
       "  --camera-info-topic T    intrinsics in the bag (default /thermal/camera_info)\n"
+      "  --detect                 find the people with the built-in detectors on the raw image\n"
+      "                           and points (no mask/clusters topics needed; detector keys and\n"
+      "                           thermal_input_flip in --config)\n"
+      "  --points-topic T         raw LiDAR cloud for --detect (default /lidar/points)\n"
       "  --camera-info FILE.yaml  intrinsics from a camera_calibration file (wins over the bag)\n"
       "  --algorithm 1|2          1: evolution only; 2: with outlier rejection (default 2)\n"
       "  --refine none|local      local refinement after the evolution (default local)\n"
@@ -72,6 +76,10 @@ CalibrateBagOptions parseCalibrateBagOptions(int argc, const char* const* argv) 
       o.quiet = true;
       continue;
     }
+    if (flag == "--detect") {
+      o.detect = true;
+      continue;
+    }
     const auto value = [&]() -> std::string {
       if (inline_value) return *inline_value;
       if (i + 1 >= args.size()) throw UsageError(flag + " needs a value");
@@ -91,6 +99,8 @@ CalibrateBagOptions parseCalibrateBagOptions(int argc, const char* const* argv) 
       o.clusters_topic = value();
     } else if (flag == "--camera-info-topic") {
       o.camera_info_topic = value();
+    } else if (flag == "--points-topic") {
+      o.points_topic = value();
     } else if (flag == "--camera-info") {
       o.camera_info_file = value();
     } else if (flag == "--algorithm") {
@@ -117,7 +127,7 @@ CalibrateBagOptions parseCalibrateBagOptions(int argc, const char* const* argv) 
   if (o.bag.empty()) throw UsageError("--bag IN.bag is required");
   if (o.output.empty()) throw UsageError("--output OUT.yaml is required");
   for (std::string* topic :
-       {&o.image_topic, &o.mask_topic, &o.clusters_topic, &o.camera_info_topic}) {
+       {&o.image_topic, &o.mask_topic, &o.clusters_topic, &o.camera_info_topic, &o.points_topic}) {
     if (topic->empty()) throw UsageError("topic names must not be empty");
     if ((*topic)[0] != '/') *topic = "/" + *topic;  // bag topics are absolute
   }

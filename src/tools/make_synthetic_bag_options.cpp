@@ -113,6 +113,10 @@ std::string makeSyntheticBagUsage() {
       "  --mask-style S           ids (default: person i = i) | binary (all persons 255)\n"
       "  --image-encoding E       mono8 (default) | mono16\n"
       "  --full-cloud             also write /lidar/points (x,y,z,intensity; decimated)\n"
+      "  --raw                    raw sensor data for calibrate_bag --detect: /lidar/points at full\n"
+      "                           density within 40 m (x,y,z,intensity,ring,truth_id) and a\n"
+      "                           radiometric mono16 /thermal/image_raw (0.04 K per count), with\n"
+      "                           sun-heated posts as warm confounders; ~1.2 MB per frame in the bag\n"
       "  --no-camera-info         do not write /thermal/camera_info\n"
       "  --camera-parent FRAME    also write /tf_static with FRAME -> camera frame\n"
       "  --time-jitter-s X        random +-X s offset per topic and frame (default 0)\n"
@@ -178,6 +182,8 @@ MakeSyntheticBagOptions parseMakeSyntheticBagOptions(const std::vector<std::stri
       o.image_encoding = oneOf(a, value(), {"mono8", "mono16"});
     } else if (a == "--full-cloud") {
       o.full_cloud = true;
+    } else if (a == "--raw") {
+      o.raw = true;
     } else if (a == "--no-camera-info") {
       o.camera_info = false;
     } else if (a == "--camera-parent") {
@@ -219,6 +225,8 @@ syn::SyntheticConfig syntheticConfigFrom(const MakeSyntheticBagOptions& o) {
   c.mask_style = o.mask_style == "binary" ? syn::MaskStyle::kBinary : syn::MaskStyle::kIds;
   c.image_depth = o.image_encoding == "mono16" ? syn::ImageDepth::kMono16 : syn::ImageDepth::kMono8;
   c.full_cloud = o.full_cloud;
+  c.raw = o.raw;
+  if (o.raw) c.image_depth = syn::ImageDepth::kMono16Radiometric;
   c.extrinsic_change.at_s = o.extrinsic_change_at_s;
   c.extrinsic_change.rotation_deg = o.extrinsic_change_rotation_deg;
   c.extrinsic_change.translation_cm = o.extrinsic_change_translation_cm;

@@ -2,6 +2,7 @@
 // positive runs on small bags written here with the rosbag C++ API.
 
 #include "bag_fixture.hpp"
+#include "cli_run.hpp"
 #include "../support/test_files.hpp"
 
 #include "thermal_lidar_calibration/ros/dataset_bag.hpp"
@@ -29,18 +30,8 @@ namespace {
 
 using tlc_cli_test::BagSpec;
 
-struct RunResult {
-  int exit_code = -1;
-  bool signalled = false;
-  std::string out, err;
-};
-
-std::string readFile(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using tlc_cli_test::RunResult;
+using tlc_cli_test::readFile;
 
 class CalibrateBagCli : public ::testing::Test {
  protected:
@@ -57,40 +48,10 @@ class CalibrateBagCli : public ::testing::Test {
     return path;
   }
 
-  RunResult run(const std::string& args) {
-    const std::string out = dir_ + "/stdout.txt", err = dir_ + "/stderr.txt";
-    const std::string cmd =
-        std::string("'") + CALIBRATE_BAG_EXE + "' " + args + " >'" + out + "' 2>'" + err + "'";
-    const int status = std::system(cmd.c_str());
-    RunResult r;
-    if (WIFEXITED(status)) {
-      r.exit_code = WEXITSTATUS(status);
-      r.signalled = r.exit_code >= 128;  // the shell reports a signal as 128 + n
-    } else {
-      r.signalled = true;
-    }
-    r.out = readFile(out);
-    r.err = readFile(err);
-    return r;
-  }
+  RunResult run(const std::string& args) { return tlc_cli_test::runTool(CALIBRATE_BAG_EXE, args, dir_); }
 
-  // The bad-input contract: exit 1 (or 2), no crash, exactly one error line, and it is the last.
   static std::string expectOneLineError(const RunResult& r, int code = 1) {
-    EXPECT_FALSE(r.signalled) << r.err;
-    EXPECT_EQ(r.exit_code, code) << r.err;
-    std::istringstream lines(r.err);
-    std::string line, error_line, last;
-    int errors = 0;
-    while (std::getline(lines, line)) {
-      if (line.rfind("calibrate_bag: error: ", 0) == 0) {
-        ++errors;
-        error_line = line;
-      }
-      if (!line.empty()) last = line;
-    }
-    EXPECT_EQ(errors, 1) << r.err;
-    EXPECT_EQ(last, error_line) << r.err;
-    return error_line;
+    return tlc_cli_test::expectOneLineError(r, "calibrate_bag: error: ", code);
   }
 
   std::string common() const { return "--output '" + dir_ + "/out.yaml' --quiet "; }

@@ -91,6 +91,32 @@ assert inside == 0 and elsewhere > 0, (inside, elsewhere)
 PY
 check "empty left region: no mask pixel in the left third, some elsewhere" test "$(cat "$dir/region_check")" = ""
 
+# --raw: what a vehicle records, for calibrate_bag --detect, with per-point person truth that
+# agrees with the ideal clusters of the same frame.
+check "raw bag" "$exe" --output "$dir/r.bag" --frames 30 --seed 2 --raw
+/usr/bin/python3 - "$dir/r.bag" >"$dir/raw_check" 2>&1 <<'PY'
+import rosbag, struct, sys
+bag = rosbag.Bag(sys.argv[1])
+images = [m for _, m, _ in bag.read_messages(topics=["/thermal/image_raw"])]
+assert images and all(m.encoding == "mono16" for m in images), "image not mono16"
+kelvin = [0.04 * struct.unpack_from("<H", images[0].data, 2 * i)[0] for i in range(0, images[0].width * images[0].height, 97)]
+assert 250 < min(kelvin) and max(kelvin) < 320, (min(kelvin), max(kelvin))
+person_frames = 0
+for _, cloud, t in bag.read_messages(topics=["/lidar/points"]):
+    names = [f.name for f in cloud.fields]
+    assert names == ["x", "y", "z", "intensity", "ring", "truth_id"], names
+    assert cloud.width > 20000, cloud.width
+    ids = set()
+    for i in range(cloud.width):
+        ring, truth = struct.unpack_from("<HI", cloud.data, i * cloud.point_step + 16)
+        assert ring < 32, ring
+        if truth:
+            ids.add(truth)
+    person_frames += bool(ids)
+assert person_frames > 0, "no person point in any scan"
+PY
+check "raw bag: mono16 kelvin range, full clouds with ring and truth_id, people in them" test "$(cat "$dir/raw_check")" = ""
+
 "$exe" --output "$dir/c1.bag" --frames 15 --seed 5 >/dev/null 2>&1
 "$exe" --output "$dir/c2.bag" --frames 15 --seed 5 >/dev/null 2>&1
 check "same seed, byte-identical bag" cmp "$dir/c1.bag" "$dir/c2.bag"

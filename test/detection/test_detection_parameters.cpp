@@ -66,7 +66,22 @@ TEST(DetectionParameterTable, EveryKeyOnceAndDescribedWithItsDefault) {
   EXPECT_TRUE(unique.count("lidar_min_points_at_10m"));
   const auto described = describeDetectionParameters(DetectionParameters{});
   ASSERT_EQ(described.size(), keys.size());
-  EXPECT_EQ(described.front(), (std::pair<std::string, std::string>{"kelvin_per_count", "0.04"}));
+  EXPECT_EQ(described.front(), (std::pair<std::string, std::string>{"thermal_input_flip", "none"}));
+  EXPECT_EQ(described[1], (std::pair<std::string, std::string>{"kelvin_per_count", "0.04"}));
+}
+
+// For calibration the LiDAR counts only people a forward-looking camera can see (the detector
+// itself looks all around); a partial file changes only what it names.
+TEST_F(DetectionParameterFile, LidarBearingWindowDefaultsToTheForwardView) {
+  const DetectionParameters defaults;
+  EXPECT_EQ(defaults.lidar.person.min_azimuth_deg, -45.0);
+  EXPECT_EQ(defaults.lidar.person.max_azimuth_deg, 45.0);
+  EXPECT_EQ(detection::LidarDetectorConfig{}.person.min_azimuth_deg, -180.0);
+  const DetectionParameters p = load("thermal_input_flip: vertical\nlidar_max_azimuth_deg: 30\n");
+  EXPECT_EQ(p.input_flip, detection::ImageFlip::kVertical);
+  EXPECT_EQ(p.lidar.person.min_azimuth_deg, -45.0);
+  EXPECT_EQ(p.lidar.person.max_azimuth_deg, 30.0);
+  EXPECT_NE(errorOf([&] { load("thermal_input_flip: sideways\n"); }).find("thermal_input_flip"), std::string::npos);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include "thermal_lidar_calibration/core/camera_model.hpp"
 #include "thermal_lidar_calibration/core/dataset_builder.hpp"
 #include "thermal_lidar_calibration/app/parameters.hpp"
+#include "thermal_lidar_calibration/ros/person_detection_adapter.hpp"
 
 #include <rosbag/bag.h>
 
@@ -20,6 +21,8 @@ namespace ros_io {
 
 struct BagTopics {
   std::string image, mask, clusters, camera_info;
+  std::string points;   // the raw cloud, read instead of mask and clusters when detecting
+  bool detect = false;  // run the person detectors on image and points (calibrate_bag --detect)
 };
 
 struct BagTopicInfo {
@@ -43,7 +46,9 @@ void openBag(rosbag::Bag& bag, const std::string& path);
 std::vector<BagTopicInfo> listBagTopics(rosbag::Bag& bag);
 // "/a (sensor_msgs/Image, 12), /b (...)" or "none".
 std::string describeBagTopics(const std::vector<BagTopicInfo>& topics);
-// Throws std::invalid_argument if the bag is empty or a topic is missing or of the wrong type.
+// Throws std::invalid_argument if the bag is empty or a topic is missing or of the wrong type
+// (image, mask and clusters; with `detect`, image and points). A bag with raw topics but no
+// mask/cluster topics, read without `detect`, is refused with an error that names --detect.
 void checkBagTopics(const std::vector<BagTopicInfo>& topics, const BagTopics& wanted,
                     const std::string& bag_path);
 // First CameraInfo on `topic`; throws std::invalid_argument (saying to pass --camera-info).
@@ -58,9 +63,12 @@ struct IngestCallbacks {
 };
 
 // Feeds the bag's image, mask and clusters messages, in bag order, through FrameSynchronizer
-// into `builder`. A damaged tail ends the read with a note in `damage`, not an exception.
+// into `builder`. With topics.detect, `detectors` turns each image into (image, mask) and each
+// raw cloud into clusters first, and those go the same way. A damaged tail ends the read with a
+// note in `damage`, not an exception.
 BagIngestStats ingestBag(rosbag::Bag& bag, const BagTopics& topics, const CoreParameters& params,
-                         DatasetBuilder& builder, const IngestCallbacks& callbacks);
+                         DatasetBuilder& builder, const IngestCallbacks& callbacks,
+                         PersonDetectionAdapter* detectors = nullptr);
 
 }  // namespace ros_io
 }  // namespace thermal_lidar_calibration

@@ -70,6 +70,13 @@ struct SyntheticConfig {
   bool full_cloud = false;
   int full_cloud_azimuth_step = 8;   // full cloud: every n-th azimuth, every 2nd ground beam,
   double full_cloud_max_range_m = 30.0;  // and nothing farther (keeps bags small)
+  // Raw sensor data for the person detectors (make_synthetic_bag --raw): the full cloud at full
+  // density (every azimuth and beam, to raw_cloud_max_range_m) with ring and truth ids, and a
+  // radiometric mono16 image (kelvin = counts * kRawKelvinPerCount) from a temperature model:
+  // people at body-surface temperatures, sun-heated posts as warm confounders, cool ground,
+  // cold sky.
+  bool raw = false;
+  double raw_cloud_max_range_m = 40.0;
   ExtrinsicChangeConfig extrinsic_change;
   // Nobody is ever seen in this third of the image: people stand on the other side of the path
   // (left/right), and in a frame where a person would show there (pixels or LiDAR points within
@@ -97,6 +104,8 @@ struct SyntheticFrame {
   std::vector<std::int32_t> cluster_labels;     // person id (false clusters: 1000 + clutter id)
   std::vector<Eigen::Vector3f> full_points;     // optional decimated full scan
   std::vector<float> full_intensity;
+  std::vector<std::uint16_t> full_ring;        // with `raw`: the beam of each full point
+  std::vector<std::uint32_t> full_truth_id;    // with `raw`: person id of each point, 0 = none
   PeopleCounts counts;     // as the ingest path counts them (core countPeople)
   std::vector<PersonInFrame> people;  // every person within detection range
 };

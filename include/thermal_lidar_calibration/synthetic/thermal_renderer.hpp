@@ -17,7 +17,13 @@
 namespace thermal_lidar_calibration {
 namespace synthetic {
 
-enum class ImageDepth : std::uint8_t { kMono8, kMono16 };
+// kMono16Radiometric: counts = kelvin / kRawKelvinPerCount (FLIR Ax5 high-resolution linear
+// mode), kelvin = kRawKelvinAtGreyZero + kRawKelvinPerGrey * grey: background 276-283 K, sky
+// ~270 K, people (grey 185-215) 300-307 K.
+enum class ImageDepth : std::uint8_t { kMono8, kMono16, kMono16Radiometric };
+constexpr double kRawKelvinPerCount = 0.04;
+constexpr double kRawKelvinAtGreyZero = 262.0;
+constexpr double kRawKelvinPerGrey = 0.21;
 
 class ThermalRenderer {
  public:

@@ -24,6 +24,7 @@ struct MakeSyntheticBagOptions {
   std::string mask_style = "ids";        // ids | binary
   std::string image_encoding = "mono8";  // mono8 | mono16
   bool full_cloud = false;
+  bool raw = false;  // --raw: full-density /lidar/points and a radiometric mono16 image
   bool camera_info = true;
   std::string camera_parent;       // non-empty: write /tf_static camera_parent -> camera frame
   double time_jitter_s = 0.0;
