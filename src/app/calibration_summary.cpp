@@ -1,4 +1,5 @@
 #include "thermal_lidar_calibration/app/calibration_summary.hpp"
+#include "thermal_lidar_calibration/app/quality_output.hpp"
 #include "thermal_lidar_calibration/app/static_transform_command.hpp"
 
 #include <cmath>
@@ -53,6 +54,7 @@ std::string formatCalibrationSummary(const SummaryInput& in) {
              r.loss, static_cast<double>(r.pairs_used))
       << "\n";
   }
+  if (in.quality) s << formatQualitySummary(*in.quality);
   s << "  run time         " << fmt("%.2f s (optimizer %.2f s, %.0f loss evaluations)",
                                     in.total_seconds, r.seconds,
                                     static_cast<double>(r.evaluations))

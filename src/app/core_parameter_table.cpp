@@ -19,6 +19,47 @@
 namespace thermal_lidar_calibration {
 namespace {
 
+// Issue 8: how far to trust a result. The verdict's thresholds are the user's to set.
+void addQualityRows(ParameterTable<CoreParameters>& t) {
+  auto quality = t.group<QualityConfig>([](CoreParameters& p) -> QualityConfig& { return p.quality; });
+  auto uncertainty = t.group<UncertaintyConfig>(
+      [](CoreParameters& p) -> UncertaintyConfig& { return p.quality.uncertainty; });
+  auto coverage = t.group<CoverageConfig>([](CoreParameters& p) -> CoverageConfig& { return p.quality.coverage; });
+  auto verdict = t.group<VerdictConfig>([](CoreParameters& p) -> VerdictConfig& { return p.quality.verdict; });
+  t.section("Quality: uncertainty, coverage, verdict (beyond the paper; issue #8)");
+  quality.boolean("uncertainty", &QualityConfig::uncertainty_enabled,
+                  "95 % intervals per axis by a bootstrap over the pairs used, after the fit");
+  uncertainty.integer("uncertainty_resamples", &UncertaintyConfig::resamples, {50, 100000}, "",
+                      "bootstrap resamples (each a local refinement from the result; parallel, "
+                      "deterministic per seed)");
+  coverage.real("coverage_near_far_split_m", &CoverageConfig::near_far_split_m, aboveRange(0, 1000), "m",
+                "a person nearer than this (LiDAR range) counts as near");
+  verdict.real("quality_good_rotation_deg", &VerdictConfig::good_rotation_deg, aboveRange(0, 180), "deg",
+               "good: every rotation half-width at most this");
+  verdict.real("quality_good_translation_cm", &VerdictConfig::good_translation_cm, aboveRange(0, 1000), "cm",
+               "good: every translation half-width at most this");
+  verdict.real("quality_usable_rotation_deg", &VerdictConfig::usable_rotation_deg, aboveRange(0, 180), "deg",
+               "usable: every rotation half-width at most this", "at least quality_good_rotation_deg");
+  verdict.real("quality_usable_translation_cm", &VerdictConfig::usable_translation_cm, aboveRange(0, 1000),
+               "cm", "usable: every translation half-width at most this", "at least quality_good_translation_cm");
+  verdict.integer("quality_good_pairs", &VerdictConfig::good_pairs, {1, 100000}, "", "good: at least this many pairs used");
+  verdict.integer("quality_usable_pairs", &VerdictConfig::usable_pairs, {1, 100000}, "",
+                  "usable: at least this many pairs used", "at most quality_good_pairs");
+  verdict.real("quality_good_third_fraction", &VerdictConfig::good_third_fraction, closedRange(0, 1.0 / 3.0), "",
+               "good: each horizontal third of the image holds at least this fraction of the person pixels");
+  verdict.real("quality_usable_third_fraction", &VerdictConfig::usable_third_fraction, closedRange(0, 1.0 / 3.0), "",
+               "usable: each third at least this fraction (below: collect more, naming the third)",
+               "at most quality_good_third_fraction");
+  verdict.integer("quality_min_people_near", &VerdictConfig::min_people_near, {0, 100000}, "",
+                  "people nearer than coverage_near_far_split_m needed for good");
+  verdict.integer("quality_min_people_far", &VerdictConfig::min_people_far, {0, 100000}, "",
+                  "people at or beyond coverage_near_far_split_m needed for good");
+  verdict.integer("quality_good_distinct_positions", &VerdictConfig::good_distinct_positions, {0, 100000}, "",
+                  "good: people stood in at least this many distinct places");
+  verdict.integer("quality_usable_distinct_positions", &VerdictConfig::usable_distinct_positions, {0, 100000},
+                  "", "usable: at least this many distinct places", "at most quality_good_distinct_positions");
+}
+
 ParameterTable<CoreParameters> makeCoreParameterTable() {
   ParameterTable<CoreParameters> t;
   auto top = t.fields();
@@ -118,6 +159,7 @@ ParameterTable<CoreParameters> makeCoreParameterTable() {
   top.integer("pairs_required", &CoreParameters::pairs_required, {1, 100000}, "",
               "node: pairs to collect before optimizing",
               "calibrate_bag uses every pair in the bag");
+  addQualityRows(t);
   return t;
 }
 
@@ -134,6 +176,7 @@ CoreParameters loadCoreParameters(const ParameterSource& source) {
   // Cross-key rules (elite + crossover <= 1, min steps below initial steps, ...) are the core's.
   p.calibration.validate();
   p.gate.validate();
+  p.quality.validate();
   return p;
 }
 

@@ -1,6 +1,7 @@
 // The YAML result file of INTERFACE.md and a reader for result / truth files.
 
 #include "thermal_lidar_calibration/app/result_file.hpp"
+#include "thermal_lidar_calibration/app/quality_output.hpp"
 #include "thermal_lidar_calibration/app/yaml_file.hpp"
 
 #include <yaml-cpp/yaml.h>
@@ -122,6 +123,8 @@ void writeResultFile(const std::string& path, const CalibrationResult& result,
     out << YAML::Key << "loss" << YAML::Value << t.truth_loss;
     out << YAML::EndMap;
   }
+
+  if (context.quality) emitQuality(out, *context.quality);
 
   out << YAML::Key << "pairs" << YAML::Value << YAML::BeginSeq;
   const std::size_t n = std::max(result.pair_losses.size(), result.inliers.size());

@@ -130,6 +130,14 @@ int runCalibrateBag(const CalibrateBagOptions& options) {
   if (!output_problem.empty()) throw std::invalid_argument("--output: " + output_problem);
   std::optional<Extrinsic> truth;
   if (!options.truth.empty()) truth = readExtrinsicFile(options.truth);
+  std::optional<Extrinsic> reference;
+  if (!options.reference.empty()) {
+    try {
+      reference = readExtrinsicFile(options.reference);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("--reference: ") + e.what());
+    }
+  }
 
   BagTopics topics{options.image_topic, options.mask_topic, options.clusters_topic,
                    options.camera_info_topic, options.points_topic, options.detect};
@@ -205,7 +213,29 @@ int runCalibrateBag(const CalibrateBagOptions& options) {
   }
   progress.finish();
 
+  // How far to trust it: bootstrap intervals, coverage, verdict, and the reference's standing.
+  std::optional<QualityAssessment> quality;
+  if (!result.stopped) {
+    QualityConfig quality_config = params.quality;
+    quality_config.uncertainty.seed = params.calibration.seed;
+    quality_config.uncertainty.num_threads = params.calibration.num_threads;
+    const int total = quality_config.uncertainty.resamples;
+    quality = assessQuality(camera, builder.pairs(), result, quality_config,
+                            params.calibration.behind_camera_penalty_c1, reference,
+                            [&](int done, int) {
+                              progress.update("uncertainty: bootstrap resample " + std::to_string(done) +
+                                              "/" + std::to_string(total));
+                              return !g_interrupted;
+                            });
+    progress.finish();
+    if (quality->reference) {
+      quality->reference->source = "file";
+      quality->reference->origin = options.reference;
+    }
+  }
+
   ResultContext context;
+  context.quality = quality;
   context.lidar_frame = builder.lidarFrame().empty() ? "lidar" : builder.lidarFrame();
   context.camera_frame = builder.cameraFrame().empty() ? "camera" : builder.cameraFrame();
   context.source = options.bag;
@@ -236,6 +266,7 @@ int runCalibrateBag(const CalibrateBagOptions& options) {
   summary.counts = builder.counts();
   summary.result = result;
   summary.truth = context.truth;
+  summary.quality = quality;
   summary.total_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!options.quiet || result.stopped) {

@@ -51,6 +51,8 @@ std::string calibrateBagUsage() {
       "  --seed N                 random seed (default 1)\n"
       "  --threads N              loss threads, 0 = all cores (results do not depend on it)\n"
       "  --truth TRUTH.yaml       known extrinsic: print rotation/translation errors and its loss\n"
+      "  --reference FILE.yaml    the calibration you already have (a result YAML): its difference\n"
+      "                           per axis and its loss on the same pairs, beside ours\n"
       "  --quiet                  only errors and warnings\n"
       "  --help                   this text\n"
       "\n"
@@ -120,6 +122,8 @@ CalibrateBagOptions parseCalibrateBagOptions(int argc, const char* const* argv) 
       o.threads = static_cast<int>(parseInteger("--threads", value(), 0, 1024));
     } else if (flag == "--truth") {
       o.truth = value();
+    } else if (flag == "--reference") {
+      o.reference = value();
     } else {
       throw UsageError("unknown argument '" + args[i] + "'");
     }

@@ -140,9 +140,28 @@ TEST(Parameters, UnknownKeysAreReported) {
   EXPECT_EQ(loadText("populaton_size: 5\n").calibration.evolution.population_size, 500);
 }
 
+// The verdict's thresholds are checked across keys too: a usable bound tighter than the good one
+// is refused with both names.
+TEST(Parameters, QualityThresholdsAreValidatedAcrossKeys) {
+  EXPECT_EQ(loadText("uncertainty_resamples: 200\n").quality.uncertainty.resamples, 200);
+  EXPECT_FALSE(loadText("uncertainty: false\n").quality.uncertainty_enabled);
+  try {
+    loadText("quality_good_rotation_deg: 0.5\nquality_usable_rotation_deg: 0.2\n");
+    FAIL() << "usable tighter than good was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("quality_usable_rotation_deg"), std::string::npos) << e.what();
+  }
+  try {
+    loadText("uncertainty_resamples: 10\n");
+    FAIL() << "10 resamples were accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("uncertainty_resamples"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Parameters, DescribeListsEveryCoreKeyOnce) {
   const auto described = describeCoreParameters(CoreParameters{});
-  EXPECT_EQ(described.size(), 34u);
+  EXPECT_EQ(described.size(), 49u);  // 34 of the method and gating, 15 of the quality (issue 8)
   for (const auto& kv : described) {
     const auto& known = knownParameterKeys();
     EXPECT_NE(std::find(known.begin(), known.end(), kv.first), known.end()) << kv.first;

@@ -21,6 +21,7 @@ struct SummaryInput {
   RejectionCounts counts;
   CalibrationResult result;
   std::optional<TruthComparison> truth;
+  std::optional<QualityAssessment> quality;  // uncertainty, coverage, verdict, reference
   double total_seconds = 0.0;        // whole tool run
 };
 

@@ -6,6 +6,7 @@
 #include "thermal_lidar_calibration/app/parameter_table.hpp"
 #include "thermal_lidar_calibration/core/calibration_config.hpp"
 #include "thermal_lidar_calibration/core/frame_gate.hpp"
+#include "thermal_lidar_calibration/core/quality_assessment.hpp"
 
 #include <string>
 #include <utility>
@@ -20,6 +21,7 @@ struct CoreParameters {
   double sync_slop_s = 0.05;   // ApproximateTime max interval between image, mask, clusters
   int sync_queue_size = 30;    // ApproximateTime queue per topic
   int pairs_required = 60;     // node: pairs to collect before optimizing
+  QualityConfig quality;       // uncertainty, coverage and verdict after a fit (issue 8)
 };
 
 const ParameterTable<CoreParameters>& coreParameterTable();

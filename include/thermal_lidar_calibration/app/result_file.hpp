@@ -2,6 +2,7 @@
 // The YAML result file of INTERFACE.md (plus per-pair detail, parameters, seed, run time),
 // and a reader for result / truth files (same keys).
 
+#include "thermal_lidar_calibration/core/quality_assessment.hpp"
 #include "thermal_lidar_calibration/core/calibrator.hpp"
 #include "thermal_lidar_calibration/app/parameters.hpp"
 
@@ -30,6 +31,7 @@ struct ResultContext {
   std::vector<double> pair_stamps_s;   // one per collected pair, same order as the result
   CoreParameters parameters;
   std::optional<TruthComparison> truth;  // written as a `truth:` block when set
+  std::optional<QualityAssessment> quality;  // uncertainty, coverage, verdict, reference keys
 };
 
 // Throws std::runtime_error if the file cannot be written (says the path and the reason).

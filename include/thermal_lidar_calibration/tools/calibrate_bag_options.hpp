@@ -25,6 +25,7 @@ struct CalibrateBagOptions {
   std::optional<std::uint64_t> seed;
   std::optional<int> threads;
   std::string truth;             // --truth TRUTH.yaml: report errors against it
+  std::string reference;         // --reference RESULT.yaml: the calibration the user already has
   bool quiet = false;
   bool help = false;
 };
