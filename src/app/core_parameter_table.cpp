@@ -60,6 +60,33 @@ void addQualityRows(ParameterTable<CoreParameters>& t) {
                   "", "usable: at least this many distinct places", "at most quality_good_distinct_positions");
 }
 
+// Issue 9: the drift watch's window and what counts as a change (core/drift_config.hpp says why
+// each default is what it is).
+void addDriftRows(ParameterTable<CoreParameters>& t) {
+  auto drift = t.group<DriftConfig>([](CoreParameters& p) -> DriftConfig& { return p.drift; });
+  t.section("Drift watch (beyond the paper; issue #9)");
+  drift.integer("monitor_window_pairs", &DriftConfig::window_pairs, {6, 100000}, "",
+                "the latest kept pairs a drift test looks at");
+  drift.integer("monitor_period_pairs", &DriftConfig::period_pairs, {1, 100000}, "",
+                "a drift test after this many new kept pairs", "at most monitor_window_pairs");
+  drift.integer("monitor_confirm_windows", &DriftConfig::confirm_windows, {1, 1000}, "",
+                "consecutive changed tests that confirm a change (ERROR); one is WARN");
+  drift.real("monitor_significance", &DriftConfig::significance, aboveRange(0, 0.5), "",
+             "a window's fit must beat the reference on held-out pairs with a signed-rank p-value below this");
+  drift.real("monitor_min_loss_ratio", &DriftConfig::min_loss_ratio, closedRange(1, 1e6), "",
+             "and the reference's loss on the window must be this many times the fit's");
+  drift.real("monitor_min_rotation_deg", &DriftConfig::min_rotation_deg, closedRange(0, 180), "deg",
+             "and the change at least this large (or the translation's)");
+  drift.real("monitor_min_translation_cm", &DriftConfig::min_translation_cm, closedRange(0, 1e5), "cm",
+             "translation change that counts (0 and 0: any size)");
+  drift.integer("monitor_folds", &DriftConfig::folds, {2, 100000}, "",
+                "cross-fitting folds of the held-out test", "at most monitor_window_pairs / 3");
+  drift.integer("monitor_update_pairs", &DriftConfig::update_pairs, {6, 100000}, "",
+                "pairs since a confirmed change the new extrinsic is fitted on before it is final");
+  drift.integer("monitor_fit_max_evaluations", &DriftConfig::fit_max_evaluations, {1, 100000000}, "",
+                "loss evaluations per refinement of a drift fit");
+}
+
 ParameterTable<CoreParameters> makeCoreParameterTable() {
   ParameterTable<CoreParameters> t;
   auto top = t.fields();
@@ -160,6 +187,7 @@ ParameterTable<CoreParameters> makeCoreParameterTable() {
               "node: pairs to collect before optimizing",
               "calibrate_bag uses every pair in the bag");
   addQualityRows(t);
+  addDriftRows(t);
   return t;
 }
 
@@ -177,6 +205,7 @@ CoreParameters loadCoreParameters(const ParameterSource& source) {
   p.calibration.validate();
   p.gate.validate();
   p.quality.validate();
+  p.drift.validate();
   return p;
 }
 

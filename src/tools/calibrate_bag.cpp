@@ -7,11 +7,14 @@
 #include "thermal_lidar_calibration/ros/bag_ingest.hpp"
 #include "thermal_lidar_calibration/app/writable_path.hpp"
 #include "thermal_lidar_calibration/app/calibration_summary.hpp"
+#include "thermal_lidar_calibration/app/drift_timeline.hpp"
 #include "thermal_lidar_calibration/app/camera_info_file.hpp"
 #include "thermal_lidar_calibration/app/progress_line.hpp"
 #include "thermal_lidar_calibration/app/result_file.hpp"
 #include "thermal_lidar_calibration/app/unknown_parameters.hpp"
 #include "thermal_lidar_calibration/node/parameter_catalog.hpp"
+
+#include <opencv2/imgcodecs.hpp>
 
 #include <atomic>
 #include <memory>
@@ -117,6 +120,57 @@ std::vector<std::size_t> inlierIndices(const CalibrationResult& result) {
   return used;
 }
 
+// "OUT.drift.csv" beside "OUT.yaml".
+std::string besideOutput(const std::string& output, const std::string& suffix) {
+  const std::size_t dot = output.rfind('.');
+  const std::size_t slash = output.rfind('/');
+  const bool has_ext = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+  return (has_ext ? output.substr(0, dot) : output) + suffix;
+}
+
+// --monitor: the kept pairs, in time order, through the drift watch against --reference.
+int runDriftWatch(const CalibrateBagOptions& options, const CoreParameters& params,
+                  const CameraModel& camera, const DatasetBuilder& builder, const Extrinsic& reference,
+                  ProgressLine& progress) {
+  const DriftTimeline timeline = watchDrift(
+      camera, builder.pairs(), reference, params.drift, params.calibration,
+      [&](std::size_t done, std::size_t total) {
+        progress.update("drift watch: pair " + std::to_string(done) + "/" + std::to_string(total));
+        return !g_interrupted;
+      });
+  progress.finish();
+  const std::string lidar = builder.lidarFrame().empty() ? "lidar" : builder.lidarFrame();
+  const std::string cam = builder.cameraFrame().empty() ? "camera" : builder.cameraFrame();
+  const std::string csv = besideOutput(options.output, ".drift.csv");
+  const std::string png = besideOutput(options.output, ".drift.png");
+  writeDriftResult(options.output, timeline, lidar, cam, options.reference);
+  writeDriftCsv(csv, timeline);
+  if (!cv::imwrite(png, drawDriftPlot(timeline))) throw std::runtime_error("cannot write " + png);
+  const auto stamp = [](const std::optional<double>& s) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.1f", s ? *s : 0.0);
+    return s ? std::string(text) : std::string("never");
+  };
+  const DriftChange change = timeline.candidate ? timeline.candidate->change
+                             : timeline.records.empty() ? DriftChange{}
+                                                        : timeline.records.back().test.change;
+  char line[256];
+  std::snprintf(line, sizeof(line), "%.3f deg, [%.2f, %.2f, %.2f] cm", change.angle_deg,
+                change.translation_cm.x(), change.translation_cm.y(), change.translation_cm.z());
+  std::printf("thermal_lidar_calibration drift watch (%s)\n", options.bag.c_str());
+  std::printf("  pairs            %llu kept, %zu tests of the latest %d pairs every %d\n",
+              static_cast<unsigned long long>(timeline.pairs), timeline.records.size(),
+              params.drift.window_pairs, params.drift.period_pairs);
+  std::printf("  state            %s at the end; first WARN %s, first ERROR %s\n", toString(timeline.state),
+              stamp(timeline.first_warn_stamp_s).c_str(), stamp(timeline.first_error_stamp_s).c_str());
+  std::printf("  change           %s against %s%s\n", line, options.reference.c_str(),
+              timeline.candidate ? " (the new extrinsic, fitted on the pairs since the change)" : " (latest window)");
+  std::printf("  files            %s, %s, %s\n", options.output.c_str(), csv.c_str(), png.c_str());
+  std::printf("  monitor time     %.2f s for %zu tests\n", timeline.seconds, timeline.records.size());
+  std::fflush(stdout);
+  return 0;
+}
+
 }  // namespace
 
 int runCalibrateBag(const CalibrateBagOptions& options) {
@@ -191,6 +245,10 @@ int runCalibrateBag(const CalibrateBagOptions& options) {
   }
   if (builder.pairs().empty()) {
     throw std::invalid_argument(noPairsMessage(stats, builder.counts(), params, topics));
+  }
+
+  if (options.monitor) {
+    return runDriftWatch(options, params, camera, builder, *reference, progress);
   }
 
   const std::size_t frames = stats.frames;

@@ -53,6 +53,9 @@ std::string calibrateBagUsage() {
       "  --truth TRUTH.yaml       known extrinsic: print rotation/translation errors and its loss\n"
       "  --reference FILE.yaml    the calibration you already have (a result YAML): its difference\n"
       "                           per axis and its loss on the same pairs, beside ours\n"
+      "  --monitor                drift watch instead of a calibration: the kept pairs in time order\n"
+      "                           against --reference; writes OUT.yaml (latest fit + drift state),\n"
+      "                           OUT.drift.csv and OUT.drift.png (monitor_* keys in --config)\n"
       "  --quiet                  only errors and warnings\n"
       "  --help                   this text\n"
       "\n"
@@ -80,6 +83,10 @@ CalibrateBagOptions parseCalibrateBagOptions(int argc, const char* const* argv) 
     }
     if (flag == "--detect") {
       o.detect = true;
+      continue;
+    }
+    if (flag == "--monitor") {
+      o.monitor = true;
       continue;
     }
     const auto value = [&]() -> std::string {
@@ -130,6 +137,9 @@ CalibrateBagOptions parseCalibrateBagOptions(int argc, const char* const* argv) 
   }
   if (o.bag.empty()) throw UsageError("--bag IN.bag is required");
   if (o.output.empty()) throw UsageError("--output OUT.yaml is required");
+  if (o.monitor && o.reference.empty()) {
+    throw UsageError("--monitor needs --reference RESULT.yaml: the extrinsic in use, to watch for drift");
+  }
   for (std::string* topic :
        {&o.image_topic, &o.mask_topic, &o.clusters_topic, &o.camera_info_topic, &o.points_topic}) {
     if (topic->empty()) throw UsageError("topic names must not be empty");

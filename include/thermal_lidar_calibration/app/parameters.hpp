@@ -5,6 +5,7 @@
 
 #include "thermal_lidar_calibration/app/parameter_table.hpp"
 #include "thermal_lidar_calibration/core/calibration_config.hpp"
+#include "thermal_lidar_calibration/core/drift_config.hpp"
 #include "thermal_lidar_calibration/core/frame_gate.hpp"
 #include "thermal_lidar_calibration/core/quality_assessment.hpp"
 
@@ -22,6 +23,7 @@ struct CoreParameters {
   int sync_queue_size = 30;    // ApproximateTime queue per topic
   int pairs_required = 60;     // node: pairs to collect before optimizing
   QualityConfig quality;       // uncertainty, coverage and verdict after a fit (issue 8)
+  DriftConfig drift;           // the drift watch (issue 9): calibrate_bag --monitor, node monitor
 };
 
 const ParameterTable<CoreParameters>& coreParameterTable();
