@@ -7,6 +7,8 @@
 #include <thermal_lidar_calibration/CalibrationStatus.h>
 
 #include <diagnostic_msgs/DiagnosticArray.h>
+#include "../support/node_observer.hpp"
+
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <rosbag/bag.h>
@@ -28,90 +30,9 @@
 
 using thermal_lidar_calibration::CalibrationStatus;
 
+using namespace node_observer;
+
 namespace {
-
-struct Observed {
-  std::mutex mutex;
-  CalibrationStatus last_status;
-  int status_messages = 0;
-  int overlay_images = 0;
-  std::vector<std::string> node_warnings;  // /rosout WARN+ from calibration_node
-  std::map<std::string, diagnostic_msgs::DiagnosticStatus> diagnostics;  // latest, by name
-  std::atomic<int> input_images{0};  // on thermal/image_raw, to tell when the player is done
-};
-Observed g_observed;
-
-void onStatus(const CalibrationStatus::ConstPtr& msg) {
-  std::lock_guard<std::mutex> lock(g_observed.mutex);
-  g_observed.last_status = *msg;
-  ++g_observed.status_messages;
-}
-
-void onOverlay(const sensor_msgs::Image::ConstPtr&) {
-  std::lock_guard<std::mutex> lock(g_observed.mutex);
-  ++g_observed.overlay_images;
-}
-
-void onInputImage(const sensor_msgs::Image::ConstPtr&) { ++g_observed.input_images; }
-
-void onDiagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr& msg) {
-  std::lock_guard<std::mutex> lock(g_observed.mutex);
-  for (const auto& status : msg->status) g_observed.diagnostics[status.name] = status;
-}
-
-void onRosout(const rosgraph_msgs::Log::ConstPtr& msg) {
-  if (msg->level < rosgraph_msgs::Log::WARN) return;
-  if (msg->name.find("calibration_node") == std::string::npos) return;
-  std::lock_guard<std::mutex> lock(g_observed.mutex);
-  g_observed.node_warnings.push_back(msg->msg);
-}
-
-bool waitFor(double timeout_s, const std::function<bool()>& predicate) {
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
-  while (ros::ok() && ros::WallTime::now() < end) {
-    {
-      std::lock_guard<std::mutex> lock(g_observed.mutex);
-      if (predicate()) return true;
-    }
-    ros::WallDuration(0.05).sleep();
-  }
-  std::lock_guard<std::mutex> lock(g_observed.mutex);
-  return predicate();
-}
-
-// True when the node said something containing every one of `parts` on /rosout.
-std::function<bool()> said(std::vector<std::string> parts) {
-  return [parts] {
-    for (const auto& w : g_observed.node_warnings) {
-      bool all = true;
-      for (const auto& p : parts) all = all && w.find(p) != std::string::npos;
-      if (all) return true;
-    }
-    return false;
-  };
-}
-
-std::string warnings() {
-  std::string s;
-  for (const auto& w : g_observed.node_warnings) s += "\n  " + w;
-  return s;
-}
-
-// The node is up: ~status keeps coming and ~save answers (success or not).
-void expectAlive(const std::string& after) {
-  int before = 0;
-  {
-    std::lock_guard<std::mutex> lock(g_observed.mutex);
-    before = g_observed.status_messages;
-  }
-  EXPECT_TRUE(waitFor(5.0, [&] { return g_observed.status_messages > before + 2; }))
-      << "~status stopped after " << after;
-  std_srvs::Trigger trigger;
-  ros::ServiceClient save =
-      ros::NodeHandle().serviceClient<std_srvs::Trigger>("calibration_node/save");
-  EXPECT_TRUE(save.waitForExistence(ros::Duration(5.0))) << "~save gone after " << after;
-  EXPECT_TRUE(save.call(trigger)) << "~save did not answer after " << after;
-}
 
 sensor_msgs::Image monoImage(const ros::Time& stamp, int width, int height) {
   sensor_msgs::Image img;
@@ -342,10 +263,7 @@ int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, "node_hostile_test");
   ros::NodeHandle nh;
-  ros::Subscriber status_sub = nh.subscribe("calibration_node/status", 100, onStatus);
-  ros::Subscriber rosout_sub = nh.subscribe("/rosout", 1000, onRosout);
-  ros::Subscriber diagnostics_sub = nh.subscribe("/diagnostics", 100, onDiagnostics);
-  ros::Subscriber image_sub = nh.subscribe("thermal/image_raw", 10, onInputImage);
+  const std::vector<ros::Subscriber> subscribers = subscribeToNode(nh);
   ros::AsyncSpinner spinner(2);
   spinner.start();
   const int result = RUN_ALL_TESTS();

@@ -1,0 +1,118 @@
+#pragma once
+// What a rostest observes of a running calibration_node: its ~status, its /rosout lines of WARN
+// and above, /diagnostics, and the images it was sent; waiting for a condition on them; and the
+// check that the node is still up. Shared by the hostile-input and fuzz rostests. A test's main()
+// calls subscribeToNode() and runs an AsyncSpinner.
+
+#include <thermal_lidar_calibration/CalibrationStatus.h>
+
+#include <diagnostic_msgs/DiagnosticArray.h>
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <rosgraph_msgs/Log.h>
+#include <sensor_msgs/Image.h>
+#include <std_srvs/Trigger.h>
+
+#include <atomic>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace node_observer {
+
+using thermal_lidar_calibration::CalibrationStatus;
+
+struct Observed {
+  std::mutex mutex;
+  CalibrationStatus last_status;
+  int status_messages = 0;
+  int overlay_images = 0;
+  std::vector<std::string> node_warnings;  // /rosout WARN+ from calibration_node
+  std::map<std::string, diagnostic_msgs::DiagnosticStatus> diagnostics;  // latest, by name
+  std::atomic<int> input_images{0};  // on thermal/image_raw, to tell when the player is done
+};
+inline Observed g_observed;
+
+inline void onStatus(const CalibrationStatus::ConstPtr& msg) {
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  g_observed.last_status = *msg;
+  ++g_observed.status_messages;
+}
+
+inline void onOverlay(const sensor_msgs::Image::ConstPtr&) {
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  ++g_observed.overlay_images;
+}
+
+inline void onInputImage(const sensor_msgs::Image::ConstPtr&) { ++g_observed.input_images; }
+
+inline void onDiagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr& msg) {
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  for (const auto& status : msg->status) g_observed.diagnostics[status.name] = status;
+}
+
+inline void onRosout(const rosgraph_msgs::Log::ConstPtr& msg) {
+  if (msg->level < rosgraph_msgs::Log::WARN) return;
+  if (msg->name.find("calibration_node") == std::string::npos) return;
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  g_observed.node_warnings.push_back(msg->msg);
+}
+
+// The subscriptions the helpers read; keep the returned subscribers alive.
+inline std::vector<ros::Subscriber> subscribeToNode(ros::NodeHandle& nh) {
+  return {nh.subscribe("calibration_node/status", 100, onStatus),
+          nh.subscribe("/rosout", 1000, onRosout),
+          nh.subscribe("/diagnostics", 100, onDiagnostics),
+          nh.subscribe("thermal/image_raw", 10, onInputImage)};
+}
+
+inline bool waitFor(double timeout_s, const std::function<bool()>& predicate) {
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
+  while (ros::ok() && ros::WallTime::now() < end) {
+    {
+      std::lock_guard<std::mutex> lock(g_observed.mutex);
+      if (predicate()) return true;
+    }
+    ros::WallDuration(0.05).sleep();
+  }
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  return predicate();
+}
+
+// True when the node said something containing every one of `parts` on /rosout.
+inline std::function<bool()> said(std::vector<std::string> parts) {
+  return [parts] {
+    for (const auto& w : g_observed.node_warnings) {
+      bool all = true;
+      for (const auto& p : parts) all = all && w.find(p) != std::string::npos;
+      if (all) return true;
+    }
+    return false;
+  };
+}
+
+inline std::string warnings() {
+  std::string s;
+  for (const auto& w : g_observed.node_warnings) s += "\n  " + w;
+  return s;
+}
+
+// The node is up: ~status keeps coming and ~save answers (success or not).
+inline void expectAlive(const std::string& after) {
+  int before = 0;
+  {
+    std::lock_guard<std::mutex> lock(g_observed.mutex);
+    before = g_observed.status_messages;
+  }
+  EXPECT_TRUE(waitFor(5.0, [&] { return g_observed.status_messages > before + 2; }))
+      << "~status stopped after " << after;
+  std_srvs::Trigger trigger;
+  ros::ServiceClient save =
+      ros::NodeHandle().serviceClient<std_srvs::Trigger>("calibration_node/save");
+  EXPECT_TRUE(save.waitForExistence(ros::Duration(5.0))) << "~save gone after " << after;
+  EXPECT_TRUE(save.call(trigger)) << "~save did not answer after " << after;
+}
+
+}  // namespace node_observer
