@@ -39,6 +39,10 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   diagnostics_->add("dataset recording",
                     [this](NodeDiagnostics::Status& status) { recorder_->diagnose(status); });
   diagnostics_->add("frame ids", [this](NodeDiagnostics::Status& status) { diagnoseFrameIds(status); });
+  input_rates_ = std::make_unique<InputRates>(
+      std::vector<std::string>{image_topic_, mask_topic_, clusters_topic_}, InputRates::Clock::now());
+  diagnostics_->add("inputs", [this](NodeDiagnostics::Status& status) { diagnoseInputs(status); });
+  diagnostics_->add("calibration", [this](NodeDiagnostics::Status& status) { diagnoseCalibration(status); });
   if (!builder_) {
     camera_info_sub_ = nh_.subscribe("thermal/camera_info", 1, &CalibrationNode::onCameraInfo, this);
   }
@@ -128,6 +132,43 @@ void CalibrationNode::diagnoseFrameIds(NodeDiagnostics::Status& status) const {
   }
 }
 
+// The rate of each input and of synchronized frames; a topic that stops or never starts is a
+// WARN naming it (while collecting: once the result is out, silence is fine).
+void CalibrationNode::diagnoseInputs(NodeDiagnostics::Status& status) {
+  using diagnostic_msgs::DiagnosticStatus;
+  const auto now = InputRates::Clock::now();
+  const std::string problem = input_rates_->problem(now);
+  if (!problem.empty() && state_ == CalibrationStatus::COLLECTING) {
+    status.summary(DiagnosticStatus::WARN, problem);
+  } else {
+    status.summaryf(DiagnosticStatus::OK, "%.1f synchronized frames/s", input_rates_->frameRateHz(now));
+  }
+  for (std::size_t i = 0; i < input_rates_->topics().size(); ++i) {
+    status.addf(input_rates_->topics()[i] + " rate (Hz)", "%.1f", input_rates_->rateHz(i, now));
+    status.add(input_rates_->topics()[i] + " messages", input_rates_->total(i));
+  }
+  status.addf("synchronized frames/s", "%.1f", input_rates_->frameRateHz(now));
+}
+
+void CalibrationNode::diagnoseCalibration(NodeDiagnostics::Status& status) const {
+  using diagnostic_msgs::DiagnosticStatus;
+  const std::uint8_t level = state_ == CalibrationStatus::FAILED ? DiagnosticStatus::ERROR : DiagnosticStatus::OK;
+  status.summary(level, std::string(stateName(state_)) + ": " + state_message_);
+  status.add("state", stateName(state_));
+  status.add("pairs kept", builder_ ? builder_->pairs().size() : 0);
+  status.add("pairs required", params_.core.pairs_required);
+  if (result_) status.addf("loss (px)", "%.4f", result_->loss);
+}
+
+void CalibrationNode::reportSilentInputs() {
+  if (state_ != CalibrationStatus::COLLECTING) return;
+  const std::string problem = input_rates_->problem(InputRates::Clock::now());
+  if (problem.empty()) return;
+  if (const auto held_back = fault_throttle_.admit("silent inputs " + problem)) {
+    ROS_WARN("%s%s", problem.c_str(), fault_throttle_.heldBackText(*held_back).c_str());
+  }
+}
+
 void CalibrationNode::onTimer(const ros::WallTimerEvent& /*event*/) {
   guard_.run("the status timer", [&] {
     if (auto outcome = worker_.takeOutcome()) handleOutcome(std::move(*outcome));
@@ -136,6 +177,7 @@ void CalibrationNode::onTimer(const ros::WallTimerEvent& /*event*/) {
       publishResult();
     }
     logProgress(false);
+    reportSilentInputs();
     publishStatus();
     diagnostics_->update();
   });

@@ -65,6 +65,7 @@ void CalibrationNode::onCameraInfo(const sensor_msgs::CameraInfo::ConstPtr& msg)
 // throttled warning); anything else that throws is caught by the guard, never ends the node.
 void CalibrationNode::onImage(const sensor_msgs::Image::ConstPtr& msg) {
   guard_.run(image_topic_, [&] {
+    input_rates_->message(0, InputRates::Clock::now());
     reportSyncFault(image_topic_, synchronizer_->addImage(msg));
     overlay_->onImage(msg);
   });
@@ -72,6 +73,7 @@ void CalibrationNode::onImage(const sensor_msgs::Image::ConstPtr& msg) {
 
 void CalibrationNode::onMask(const sensor_msgs::Image::ConstPtr& msg) {
   guard_.run(mask_topic_, [&] {
+    input_rates_->message(1, InputRates::Clock::now());
     reportSyncFault(mask_topic_, synchronizer_->addMask(msg));
     overlay_->onMask(msg);
   });
@@ -79,6 +81,7 @@ void CalibrationNode::onMask(const sensor_msgs::Image::ConstPtr& msg) {
 
 void CalibrationNode::onClusters(const sensor_msgs::PointCloud2::ConstPtr& msg) {
   guard_.run(clusters_topic_, [&] {
+    input_rates_->message(2, InputRates::Clock::now());
     reportSyncFault(clusters_topic_, synchronizer_->addClusters(msg));
     overlay_->onClusters(msg);
   });
@@ -127,6 +130,7 @@ void CalibrationNode::reportFrameIdConflict() {
 void CalibrationNode::onFrame(const sensor_msgs::Image::ConstPtr& image,
                               const sensor_msgs::Image::ConstPtr& mask,
                               const sensor_msgs::PointCloud2::ConstPtr& clusters) {
+  input_rates_->frame(InputRates::Clock::now());
   if (!builder_) {
     ROS_WARN_THROTTLE(5.0, "no intrinsics yet: waiting for %s (or set ~camera_info_file)",
                       camera_info_topic_.c_str());

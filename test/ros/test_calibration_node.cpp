@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 #include <ros/ros.h>
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <rosgraph_msgs/Log.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
@@ -45,9 +46,15 @@ struct Observed {
   // child frame -> (publisher, transform) for every /tf_static transform seen
   std::multimap<std::string, std::pair<std::string, geometry_msgs::TransformStamped>> tf_static;
   std::vector<std::string> node_warnings;  // /rosout WARN+ from calibration_node
+  std::map<std::string, diagnostic_msgs::DiagnosticStatus> diagnostics;  // latest, by name
 };
 
 Observed g_observed;
+
+void onDiagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr& msg) {
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  for (const auto& status : msg->status) g_observed.diagnostics[status.name] = status;
+}
 
 void onStatus(const CalibrationStatus::ConstPtr& msg) {
   std::lock_guard<std::mutex> lock(g_observed.mutex);
@@ -424,6 +431,42 @@ TEST(NodeBadMessages, SlashedIdsAreTheSameSensorsAndAPersistentConflictIsAnError
   })) << g_observed.last_status;
 }
 
+// A topic that stops (or never starts) while the others arrive: the node said nothing and sat at
+// "collecting" (issue 8). Now /diagnostics ("inputs") is a WARN naming it, and so is the log.
+TEST(NodeBadMessages, ATopicThatStopsIsNamedOnDiagnosticsAndInTheLog) {
+  ros::NodeHandle nh;
+  auto image_pub = nh.advertise<sensor_msgs::Image>("thermal/image_raw", 10);
+  auto cloud_pub = nh.advertise<sensor_msgs::PointCloud2>("lidar/human_clusters", 10);
+  ASSERT_TRUE(waitFor(10.0, [&] { return image_pub.getNumSubscribers() > 0 && cloud_pub.getNumSubscribers() > 0; }));
+  const auto mask_named = [] {
+    for (const auto& entry : g_observed.diagnostics) {
+      const diagnostic_msgs::DiagnosticStatus& s = entry.second;
+      if (s.name.find("inputs") != std::string::npos && s.level == diagnostic_msgs::DiagnosticStatus::WARN &&
+          s.message.find("/thermal/human_mask") != std::string::npos &&
+          s.message.find("/thermal/image_raw") != std::string::npos) {
+        return true;
+      }
+    }
+    return false;
+  };
+  bool named = false;
+  for (int i = 0; i < 100 && ros::ok() && !named; ++i) {  // up to 10 s of image and clusters only
+    const ros::Time stamp = ros::Time::now();
+    image_pub.publish(monoImage(stamp, kWidth, kHeight, "mono8"));
+    cloud_pub.publish(cloud(stamp, true, 0));
+    ros::WallDuration(0.1).sleep();
+    std::lock_guard<std::mutex> lock(g_observed.mutex);
+    named = i > 50 && mask_named();
+  }
+  EXPECT_TRUE(named) << "no WARN naming /thermal/human_mask on /diagnostics";
+  EXPECT_TRUE(waitFor(5.0, [] {
+    for (const auto& w : g_observed.node_warnings) {
+      if (w.find("no messages on /thermal/human_mask") != std::string::npos) return true;
+    }
+    return false;
+  })) << joined(g_observed.node_warnings);
+}
+
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, "calibration_node_test");
@@ -431,6 +474,7 @@ int main(int argc, char** argv) {
   ros::Subscriber status_sub = nh.subscribe("calibration_node/status", 100, onStatus);
   ros::Subscriber tf_sub = nh.subscribe("/tf_static", 100, onTfStatic);
   ros::Subscriber rosout_sub = nh.subscribe("/rosout", 1000, onRosout);
+  ros::Subscriber diagnostics_sub = nh.subscribe("/diagnostics", 100, onDiagnostics);
   ros::AsyncSpinner spinner(2);
   spinner.start();
   const int result = RUN_ALL_TESTS();

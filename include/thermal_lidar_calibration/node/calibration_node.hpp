@@ -11,6 +11,7 @@
 #include "thermal_lidar_calibration/app/calibration_worker.hpp"
 #include "thermal_lidar_calibration/ros/dataset_bag.hpp"
 #include "thermal_lidar_calibration/app/fault_throttle.hpp"
+#include "thermal_lidar_calibration/app/input_rates.hpp"
 #include "thermal_lidar_calibration/node/callback_guard.hpp"
 #include "thermal_lidar_calibration/node/dataset_recorder.hpp"
 #include "thermal_lidar_calibration/node/node_diagnostics.hpp"
@@ -65,6 +66,9 @@ class CalibrationNode {
   void createBuilder(const CameraModel& camera, const std::string& source);
   void onTimer(const ros::WallTimerEvent& event);
   void diagnoseFrameIds(NodeDiagnostics::Status& status) const;
+  void diagnoseInputs(NodeDiagnostics::Status& status);
+  void diagnoseCalibration(NodeDiagnostics::Status& status) const;
+  void reportSilentInputs();
 
   // calibration_node_ingest.cpp (callbacks, main thread)
   void resumeDataset();
@@ -107,6 +111,7 @@ class CalibrationNode {
   std::set<long long> stored_stamps_ns_;  // image stamps of pairs in the dataset (no duplicates)
   std::size_t pairs_resumed_ = 0;
   bool frame_id_conflict_ = false;  // frames keep arriving with other ids than the dataset's
+  std::unique_ptr<InputRates> input_rates_;  // image, mask, clusters: rates and silent topics
 
   std::unique_ptr<FrameSynchronizer> synchronizer_;
   std::unique_ptr<image_transport::ImageTransport> it_;
