@@ -43,6 +43,7 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
       std::vector<std::string>{image_topic_, mask_topic_, clusters_topic_}, InputRates::Clock::now());
   diagnostics_->add("inputs", [this](NodeDiagnostics::Status& status) { diagnoseInputs(status); });
   diagnostics_->add("calibration", [this](NodeDiagnostics::Status& status) { diagnoseCalibration(status); });
+  diagnostics_->add("tf", [this](NodeDiagnostics::Status& status) { diagnoseTf(status); });
   if (!builder_) {
     camera_info_sub_ = nh_.subscribe("thermal/camera_info", 1, &CalibrationNode::onCameraInfo, this);
   }
@@ -172,10 +173,8 @@ void CalibrationNode::reportSilentInputs() {
 void CalibrationNode::onTimer(const ros::WallTimerEvent& /*event*/) {
   guard_.run("the status timer", [&] {
     if (auto outcome = worker_.takeOutcome()) handleOutcome(std::move(*outcome));
-    if (result_ && !result_published_ &&
-        (ros::WallTime::now() - start_time_).toSec() >= params_.tf_check_wait_s) {
-      publishResult();
-    }
+    if (result_ && !result_published_ && tfCheckWaitOver()) publishResult();
+    if (result_ && result_published_) watchTf();
     logProgress(false);
     reportSilentInputs();
     publishStatus();

@@ -66,6 +66,7 @@ void CalibrationNode::onCameraInfo(const sensor_msgs::CameraInfo::ConstPtr& msg)
 void CalibrationNode::onImage(const sensor_msgs::Image::ConstPtr& msg) {
   guard_.run(image_topic_, [&] {
     input_rates_->message(0, InputRates::Clock::now());
+    if (!first_input_time_ && !ros::Time::now().isZero()) first_input_time_ = ros::Time::now();
     reportSyncFault(image_topic_, synchronizer_->addImage(msg));
     overlay_->onImage(msg);
   });
@@ -74,6 +75,7 @@ void CalibrationNode::onImage(const sensor_msgs::Image::ConstPtr& msg) {
 void CalibrationNode::onMask(const sensor_msgs::Image::ConstPtr& msg) {
   guard_.run(mask_topic_, [&] {
     input_rates_->message(1, InputRates::Clock::now());
+    if (!first_input_time_ && !ros::Time::now().isZero()) first_input_time_ = ros::Time::now();
     reportSyncFault(mask_topic_, synchronizer_->addMask(msg));
     overlay_->onMask(msg);
   });
@@ -82,6 +84,7 @@ void CalibrationNode::onMask(const sensor_msgs::Image::ConstPtr& msg) {
 void CalibrationNode::onClusters(const sensor_msgs::PointCloud2::ConstPtr& msg) {
   guard_.run(clusters_topic_, [&] {
     input_rates_->message(2, InputRates::Clock::now());
+    if (!first_input_time_ && !ros::Time::now().isZero()) first_input_time_ = ros::Time::now();
     reportSyncFault(clusters_topic_, synchronizer_->addClusters(msg));
     overlay_->onClusters(msg);
   });

@@ -46,12 +46,47 @@ void CalibrationNode::handleOutcome(CalibrationWorker::Outcome outcome) {
   const std::string write_error = writeResult();
   overlay_->setEstimate(result_->extrinsic);
   result_published_ = false;
-  if ((ros::WallTime::now() - start_time_).toSec() >= params_.tf_check_wait_s) publishResult();
+  if (tfCheckWaitOver()) publishResult();
   setState(CalibrationStatus::DONE,
            "done: loss " + std::to_string(result_->loss) + " px" +
                (write_error.empty() ? ""
                                     : "; result file NOT written (" + write_error +
                                           "); free the path and call ~save"));
+}
+
+bool CalibrationNode::tfCheckWaitOver() const {
+  if ((ros::WallTime::now() - start_time_).toSec() < params_.tf_check_wait_s) return false;
+  return first_input_time_ && (ros::Time::now() - *first_input_time_).toSec() >= params_.tf_check_wait_s;
+}
+
+void CalibrationNode::watchTf() {
+  if (!tf_conflict_.empty()) return;
+  const auto conflict = tf_publisher_->conflictAfterPublishing();
+  if (!conflict) return;
+  const std::string moved_to = tf_publisher_->moveToFallback();
+  tf_conflict_ = *conflict + "; the result moved to '" + lidar_frame_ + "' -> '" + moved_to +
+                 "' (tf listeners that already hold the old edge keep it until they restart)";
+  published_child_ = moved_to;
+  ROS_ERROR("second parent: %s", tf_conflict_.c_str());
+  setState(state_, "error: second parent: " + tf_conflict_);
+  diagnostics_->publishNow();
+}
+
+void CalibrationNode::diagnoseTf(NodeDiagnostics::Status& status) const {
+  using diagnostic_msgs::DiagnosticStatus;
+  if (!tf_conflict_.empty()) {
+    status.summary(DiagnosticStatus::ERROR, "second parent: " + tf_conflict_);
+  } else if (result_ && result_published_) {
+    status.summary(DiagnosticStatus::OK, "published '" + lidar_frame_ + "' -> '" + published_child_ + "'");
+  } else if (result_) {
+    status.summary(DiagnosticStatus::OK,
+                   first_input_time_ ? "listening to the tf tree before publishing (~tf_check_wait_s of data time)"
+                                     : "the result waits for input data: it is published after ~tf_check_wait_s of "
+                                       "the data's own time, so a replayed bag's /tf_static is seen first");
+  } else {
+    status.summary(DiagnosticStatus::OK, "no result yet");
+  }
+  status.add("child_frame", result_published_ ? published_child_ : "");
 }
 
 void CalibrationNode::publishResult() {

@@ -26,6 +26,7 @@ bool CalibrationNode::onReset(std_srvs::Trigger::Request& /*req*/, std_srvs::Tri
   pairs_resumed_ = 0;
   result_.reset();
   result_published_ = true;
+  tf_conflict_.clear();
   overlay_->setEstimate(std::nullopt);
   const std::string bag_note = recorder_->enabled() ? "; " + recorder_->clear() : "";
   res.success = true;

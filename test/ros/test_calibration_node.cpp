@@ -47,6 +47,7 @@ struct Observed {
   std::multimap<std::string, std::pair<std::string, geometry_msgs::TransformStamped>> tf_static;
   std::vector<std::string> node_warnings;  // /rosout WARN+ from calibration_node
   std::map<std::string, diagnostic_msgs::DiagnosticStatus> diagnostics;  // latest, by name
+  std::vector<std::string> node_tf_static_children;  // of the node's latest /tf_static message
 };
 
 Observed g_observed;
@@ -69,6 +70,10 @@ void onTfStatic(const ros::MessageEvent<tf2_msgs::TFMessage const>& event) {
   std::lock_guard<std::mutex> lock(g_observed.mutex);
   for (const auto& t : event.getMessage()->transforms) {
     g_observed.tf_static.emplace(t.child_frame_id, std::make_pair(event.getPublisherName(), t));
+  }
+  if (event.getPublisherName().find("calibration_node") != std::string::npos) {
+    g_observed.node_tf_static_children.clear();
+    for (const auto& t : event.getMessage()->transforms) g_observed.node_tf_static_children.push_back(t.child_frame_id);
   }
 }
 
@@ -429,6 +434,49 @@ TEST(NodeBadMessages, SlashedIdsAreTheSameSensorsAndAPersistentConflictIsAnError
   EXPECT_TRUE(waitFor(5.0, [&] {
     return g_observed.last_status.message.find("error:") == std::string::npos;
   })) << g_observed.last_status;
+}
+
+// A parent for the camera frame that arrives after the node published its result (a robot's
+// /tf_static sent late, or a bag replayed after a resumed node published): the node said
+// nothing and the camera had two parents (issue 12, item 8; issue 10). Now it keeps watching:
+// the conflict is an error on ~status, /diagnostics and in the log, and its latched /tf_static
+// message moves the result to <camera>_calibrated.
+TEST(NodeLateParent, AParentArrivingAfterPublishingMovesTheResult) {
+  ros::NodeHandle nh;
+  ASSERT_TRUE(waitFor(240.0, [] {
+    return g_observed.last_status.state_name == "done" && g_observed.last_status.child_frame == "thermal_optical";
+  })) << g_observed.last_status;
+  auto tf_pub = nh.advertise<tf2_msgs::TFMessage>("/tf_static", 1, /*latch=*/true);
+  tf2_msgs::TFMessage late;
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = ros::Time::now();
+  t.header.frame_id = "base_link";
+  t.child_frame_id = "thermal_optical";
+  t.transform.rotation.w = 1.0;
+  late.transforms.push_back(t);
+  tf_pub.publish(late);
+  EXPECT_TRUE(waitFor(10.0, [] { return g_observed.last_status.child_frame == "thermal_optical_calibrated"; }))
+      << g_observed.last_status;
+  EXPECT_NE(g_observed.last_status.message.find("second parent"), std::string::npos) << g_observed.last_status;
+  EXPECT_NE(g_observed.last_status.message.find("'base_link'"), std::string::npos) << g_observed.last_status;
+  EXPECT_TRUE(waitFor(5.0, [] {
+    return g_observed.node_tf_static_children == std::vector<std::string>{"thermal_optical_calibrated"};
+  })) << "the node's latched /tf_static still names another child";
+  EXPECT_TRUE(waitFor(5.0, [] {
+    for (const auto& w : g_observed.node_warnings) {
+      if (w.find("second parent") != std::string::npos) return true;
+    }
+    return false;
+  })) << joined(g_observed.node_warnings);
+  EXPECT_TRUE(waitFor(5.0, [] {
+    for (const auto& entry : g_observed.diagnostics) {
+      if (entry.first.find(": tf") != std::string::npos &&
+          entry.second.level == diagnostic_msgs::DiagnosticStatus::ERROR) {
+        return true;
+      }
+    }
+    return false;
+  })) << "no ERROR for tf on /diagnostics";
 }
 
 // A topic that stops (or never starts) while the others arrive: the node said nothing and sat at

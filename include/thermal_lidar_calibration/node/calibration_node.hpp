@@ -87,6 +87,14 @@ class CalibrationNode {
   void publishResult();
   // Writes ~output_file and reads it back; "" when the file holds the result, else why not.
   std::string writeResult();
+  // The tf check's wait is over: ~tf_check_wait_s of wall time since start AND of the data's
+  // own time (ros::Time, sim time on a replay) since the first input message, so a resumed node
+  // does not publish before a replayed bag's /tf_static has had its chance.
+  bool tfCheckWaitOver() const;
+  // After publishing: a parent for the camera frame found later moves the result to the
+  // fallback frame, loudly.
+  void watchTf();
+  void diagnoseTf(NodeDiagnostics::Status& status) const;
 
   // calibration_node_services.cpp
   bool onCalibrate(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
@@ -112,6 +120,8 @@ class CalibrationNode {
   std::size_t pairs_resumed_ = 0;
   bool frame_id_conflict_ = false;  // frames keep arriving with other ids than the dataset's
   std::unique_ptr<InputRates> input_rates_;  // image, mask, clusters: rates and silent topics
+  std::optional<ros::Time> first_input_time_;  // ros::Time::now() at the first input message
+  std::string tf_conflict_;  // a second parent found after publishing, in words
 
   std::unique_ptr<FrameSynchronizer> synchronizer_;
   std::unique_ptr<image_transport::ImageTransport> it_;
