@@ -39,7 +39,7 @@ CalibrationWorker::~CalibrationWorker() {
 }
 
 void CalibrationWorker::start(const CameraModel& camera, std::vector<CalibrationPair> pairs,
-                              const CalibrationConfig& config) {
+                              const CalibrationConfig& config, std::optional<QualityRequest> quality) {
   std::lock_guard<std::mutex> lock(state_->mutex);
   if (state_->running) throw std::logic_error("a calibration is already running");
   if (state_->thread.joinable()) state_->thread.join();  // finished: reap it
@@ -48,7 +48,7 @@ void CalibrationWorker::start(const CameraModel& camera, std::vector<Calibration
   state_->progress.reset();
   state_->outcome.reset();
   std::shared_ptr<State> state = state_;
-  state_->thread = std::thread([state, camera, pairs = std::move(pairs), config]() {
+  state_->thread = std::thread([state, camera, pairs = std::move(pairs), config, quality]() {
     Outcome outcome;
     try {
       const ProgressCallback callback = [&state](const Progress& p) {
@@ -59,6 +59,15 @@ void CalibrationWorker::start(const CameraModel& camera, std::vector<Calibration
         return !state->stop.load();
       };
       outcome.result = calibrate(camera, pairs, config, callback);
+      if (quality && !outcome.result->stopped) {
+        try {
+          outcome.quality = assessQuality(camera, pairs, *outcome.result, quality->config,
+                                          config.behind_camera_penalty_c1, quality->reference,
+                                          [&state](int, int) { return !state->stop.load(); });
+        } catch (const std::exception& e) {
+          outcome.error = std::string("quality assessment failed: ") + e.what();  // result stands
+        }
+      }
     } catch (const std::exception& e) {
       outcome.error = e.what();
     } catch (...) {

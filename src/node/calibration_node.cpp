@@ -3,6 +3,7 @@
 #include "thermal_lidar_calibration/node/calibration_node.hpp"
 
 #include "thermal_lidar_calibration/app/camera_info_file.hpp"
+#include "thermal_lidar_calibration/app/result_file.hpp"
 #include "thermal_lidar_calibration/app/unknown_parameters.hpp"
 #include "thermal_lidar_calibration/app/writable_path.hpp"
 #include "thermal_lidar_calibration/node/parameter_catalog.hpp"
@@ -29,6 +30,13 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   status_pub_ = private_nh_.advertise<CalibrationStatus>("status", 1, /*latch=*/true);
   overlay_ = std::make_unique<OverlayPublisher>(private_nh_, params_.overlay_max_points,
                                                 clusters_topic_);
+  if (!params_.reference_file.empty()) {
+    try {
+      reference_ = readExtrinsicFile(params_.reference_file);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("parameter 'reference_file': ") + e.what());
+    }
+  }
   if (!params_.camera_info_file.empty()) {
     const CameraModel camera = loadCameraInfoFile(params_.camera_info_file);  // throws
     camera_info_msg_ = cameraInfoFromModel(camera);
@@ -159,6 +167,18 @@ void CalibrationNode::diagnoseCalibration(NodeDiagnostics::Status& status) const
   status.add("pairs kept", builder_ ? builder_->pairs().size() : 0);
   status.add("pairs required", params_.core.pairs_required);
   if (result_) status.addf("loss (px)", "%.4f", result_->loss);
+  if (quality_) {
+    status.add("verdict", toString(quality_->verdict.verdict));
+    for (std::size_t i = 0; i < quality_->verdict.reasons.size(); ++i) {
+      status.add("verdict reason " + std::to_string(i + 1), quality_->verdict.reasons[i]);
+    }
+    if (quality_->uncertainty) {
+      const auto& u = *quality_->uncertainty;
+      status.addf("rotation 95% +- (deg)", "%.3f %.3f %.3f", u.rotation_deg.x(), u.rotation_deg.y(), u.rotation_deg.z());
+      status.addf("translation 95% +- (cm)", "%.2f %.2f %.2f", u.translation_cm.x(), u.translation_cm.y(),
+                  u.translation_cm.z());
+    }
+  }
 }
 
 void CalibrationNode::reportSilentInputs() {

@@ -21,7 +21,10 @@ std::string CalibrationNode::startOptimization(const std::string& why) {
   result_stamps_s_.clear();
   for (const auto& pair : builder_->pairs()) result_stamps_s_.push_back(pair.stamp_s);
   discard_outcome_ = false;
-  worker_.start(builder_->camera(), builder_->pairs(), params_.core.calibration);
+  CalibrationWorker::QualityRequest quality{params_.core.quality, reference_};
+  quality.config.uncertainty.seed = params_.core.calibration.seed;
+  quality.config.uncertainty.num_threads = params_.core.calibration.num_threads;
+  worker_.start(builder_->camera(), builder_->pairs(), params_.core.calibration, quality);
   logProgress(true);
   setState(CalibrationStatus::OPTIMIZING, "optimizing " + std::to_string(n) + " pairs (" + why + ")");
   ROS_INFO("optimizing %zu pairs on a worker thread (%s)", n, why.c_str());
@@ -43,12 +46,23 @@ void CalibrationNode::handleOutcome(CalibrationWorker::Outcome outcome) {
     return;
   }
   result_ = std::move(outcome.result);
+  quality_ = std::move(outcome.quality);
+  if (quality_ && quality_->reference) {
+    quality_->reference->source = "file";
+    quality_->reference->origin = params_.reference_file;
+  }
+  if (!outcome.error.empty()) ROS_WARN("%s", outcome.error.c_str());
+  if (quality_) {
+    ROS_INFO("verdict %s: %s", toString(quality_->verdict.verdict),
+             quality_->verdict.reasons.empty() ? "" : quality_->verdict.reasons.front().c_str());
+  }
   const std::string write_error = writeResult();
   overlay_->setEstimate(result_->extrinsic);
   result_published_ = false;
   if (tfCheckWaitOver()) publishResult();
   setState(CalibrationStatus::DONE,
            "done: loss " + std::to_string(result_->loss) + " px" +
+               (quality_ ? std::string(", verdict ") + toString(quality_->verdict.verdict) : "") +
                (write_error.empty() ? ""
                                     : "; result file NOT written (" + write_error +
                                           "); free the path and call ~save"));
@@ -116,6 +130,7 @@ std::string CalibrationNode::writeResult() {
   context.source = "live";
   context.pair_stamps_s = result_stamps_s_;
   context.parameters = params_.core;
+  context.quality = quality_;
   try {
     writeResultFile(params_.output_file, *result_, context);
     // Read back: a success that was not checked is not one (a full disk can take the rename and

@@ -25,6 +25,7 @@ bool CalibrationNode::onReset(std_srvs::Trigger::Request& /*req*/, std_srvs::Tri
   stored_stamps_ns_.clear();
   pairs_resumed_ = 0;
   result_.reset();
+  quality_.reset();
   result_published_ = true;
   tf_conflict_.clear();
   overlay_->setEstimate(std::nullopt);

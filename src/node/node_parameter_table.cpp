@@ -25,6 +25,10 @@ ParameterTable<NodeParameters> makeNodeParameterTable() {
   node.text("camera_info_file", &NodeParameters::camera_info_file,
             TextRule::optional("use the topic thermal/camera_info"),
             "camera_calibration YAML for intrinsics");
+  node.text("reference_file", &NodeParameters::reference_file,
+            TextRule::optional("no reference"),
+            "result YAML of the calibration in use: the result reports its difference per axis and its loss "
+            "on the same pairs");
   node.text("child_frame", &NodeParameters::child_frame,
             TextRule::optional("<camera_frame>_calibrated"),
             "frame published when the camera frame already has a parent");

@@ -21,6 +21,7 @@
 #include <sensor_msgs/point_cloud2_iterator.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_msgs/TFMessage.h>
+#include <yaml-cpp/yaml.h>
 
 #include <Eigen/Geometry>
 
@@ -174,6 +175,15 @@ TEST(NodeBag, ReachesDonePublishesTruthAndWritesYaml) {
   const Extrinsic from_file = thermal_lidar_calibration::readExtrinsicFile(result_file);
   EXPECT_LT(thermal_lidar_calibration::rotationErrorRad(from_file, estimate), 1e-6);
   EXPECT_LT(thermal_lidar_calibration::translationErrorM(from_file, estimate), 1e-6);
+  // And how far to trust it (issue 8): intervals per axis, coverage, a verdict with reasons.
+  const YAML::Node yaml = YAML::LoadFile(result_file);
+  ASSERT_TRUE(yaml["uncertainty"]) << "no uncertainty in " << result_file;
+  EXPECT_EQ(yaml["uncertainty"]["rotation_deg"].size(), 3u);
+  EXPECT_GT(yaml["uncertainty"]["translation_cm"][2].as<double>(), 0.0);
+  ASSERT_TRUE(yaml["verdict"]);
+  EXPECT_GE(yaml["verdict_reasons"].size(), 1u);
+  EXPECT_TRUE(yaml["coverage"]);
+  EXPECT_NE(g_observed.last_status.message.find("verdict"), std::string::npos) << g_observed.last_status;
 
   // The node published nothing but its result on /tf_static; existing parents are untouched.
   for (const auto& entry : g_observed.tf_static) {

@@ -65,6 +65,16 @@ class StartChecks(unittest.TestCase):
         self.assertNotEqual(code, 0, out)
         self.assert_refused(out, "dataset_bag", path, "cannot create files in /proc")
 
+    def test_unreadable_reference_file(self):
+        path = os.path.join(self.work, "no_such_result.yaml")
+        code, out = self.start("bad_reference", output_file=os.path.join(self.work, "r4.yaml"),
+                               dataset_bag="", reference_file=path)
+        self.assertNotEqual(code, 0, out)
+        fatal = [line for line in out.splitlines() if "cannot start" in line]
+        self.assertEqual(len(fatal), 1, out)
+        self.assertIn("parameter 'reference_file'", fatal[0])
+        self.assertIn(path, fatal[0])
+
 
 if __name__ == "__main__":
     rostest.rosrun(PKG, "node_start_checks", StartChecks)

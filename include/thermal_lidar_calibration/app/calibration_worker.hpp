@@ -4,6 +4,7 @@
 // progress callback, so a run stops within one generation. ROS-free apart from its location.
 
 #include "thermal_lidar_calibration/core/calibrator.hpp"
+#include "thermal_lidar_calibration/core/quality_assessment.hpp"
 
 #include <memory>
 #include <optional>
@@ -16,6 +17,7 @@ class CalibrationWorker {
  public:
   struct Outcome {
     std::optional<CalibrationResult> result;  // set on success (result->stopped if stopped)
+    std::optional<QualityAssessment> quality;  // with a quality request, after a finished fit
     std::string error;                        // set on failure
   };
 
@@ -27,8 +29,15 @@ class CalibrationWorker {
   CalibrationWorker& operator=(const CalibrationWorker&) = delete;
 
   // Starts a run on copies of the inputs. Throws std::logic_error if a run is still going.
+  // With `quality`, the fit is followed on the same thread by assessQuality() (bootstrap
+  // intervals, coverage, verdict, the reference's standing); a failure there leaves the result.
+  struct QualityRequest {
+    QualityConfig config;
+    std::optional<Extrinsic> reference;
+  };
   void start(const CameraModel& camera, std::vector<CalibrationPair> pairs,
-             const CalibrationConfig& config);
+             const CalibrationConfig& config,
+             std::optional<QualityRequest> quality = std::nullopt);
   void requestStop();
   bool busy() const;  // a run is going (or stopping)
   std::optional<Progress> progress() const;  // latest progress of the current or last run

@@ -138,6 +138,8 @@ class CalibrationNode {
   std::uint8_t state_ = CalibrationStatus::COLLECTING;
   std::string state_message_;
   std::optional<CalibrationResult> result_;
+  std::optional<QualityAssessment> quality_;  // of result_: intervals, coverage, verdict, reference
+  std::optional<Extrinsic> reference_;        // ~reference_file
   std::vector<double> result_stamps_s_;
   std::string camera_frame_, lidar_frame_;
   std::string published_child_;

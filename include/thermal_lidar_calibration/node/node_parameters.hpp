@@ -18,6 +18,7 @@ struct NodeParameters {
   std::string dataset_bag = "thermal_lidar_dataset.bag";       // "" = do not record pairs
   bool resume = false;               // reload dataset_bag at start and continue it
   std::string camera_info_file;      // camera_calibration YAML; "" = use thermal/camera_info
+  std::string reference_file;        // result YAML of the calibration in use; "" = none
   std::string child_frame;           // used when the camera frame already has a parent;
                                      // "" = "<camera_frame>_calibrated"
   int min_pairs_to_calibrate = 20;   // ~calibrate is refused below this, [1, pairs_required]
