@@ -99,6 +99,8 @@ void SyntheticBagWriter::write(const syn::SyntheticFrame& f) {
              encodeClusters(f.cluster_points, f.cluster_labels, lidar_frame, t_clusters));
   if (config_.raw) {
     bag_.write("/lidar/points", ros::Time(t_clusters), encodeRawScan(f, lidar_frame, t_clusters));
+    bag_.write("/truth/thermal_person_ids", ros::Time(t_image),
+               encodeMonoImage(f.truth_person_ids, camera_frame, t_image));
   } else if (config_.full_cloud) {
     bag_.write("/lidar/points", ros::Time(t_clusters),
                encodePointsWithIntensity(f.full_points, f.full_intensity, lidar_frame, t_clusters));

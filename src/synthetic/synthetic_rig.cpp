@@ -321,6 +321,14 @@ SyntheticFrame SyntheticRig::renderSnapshot(const std::vector<WorldObject>& obje
   frame.image = rendererAt(index).renderImage(owners, objects, config_.image_depth, noise.image_noise, drift, rng_image);
 
   if (config_.raw) {
+    frame.truth_person_ids = cv::Mat::zeros(owners.rows, owners.cols, CV_16UC1);
+    for (int v = 0; v < owners.rows; ++v) {
+      const int* own = owners.ptr<int>(v);
+      std::uint16_t* id = frame.truth_person_ids.ptr<std::uint16_t>(v);
+      for (int u = 0; u < owners.cols; ++u) {
+        if (own[u] >= 0) id[u] = static_cast<std::uint16_t>(objects[static_cast<std::size_t>(own[u])].person_id);
+      }
+    }
     for (const auto& r : returns) {
       if (r.range_m > config_.raw_cloud_max_range_m) continue;
       frame.full_points.push_back(r.point);

@@ -114,6 +114,21 @@ for _, cloud, t in bag.read_messages(topics=["/lidar/points"]):
             ids.add(truth)
     person_frames += bool(ids)
 assert person_frames > 0, "no person point in any scan"
+# The per-pixel truth holds the same person ids as the per-point truth.
+pixel_ids = set()
+for _, ids, _ in bag.read_messages(topics=["/truth/thermal_person_ids"]):
+    assert ids.encoding == "mono16", ids.encoding
+    for i in range(0, ids.width * ids.height, 7):
+        v = struct.unpack_from("<H", ids.data, 2 * i)[0]
+        if v:
+            pixel_ids.add(v)
+point_ids = set()
+for _, cloud, _ in bag.read_messages(topics=["/lidar/points"]):
+    for i in range(0, cloud.width, 5):
+        truth = struct.unpack_from("<I", cloud.data, i * cloud.point_step + 18)[0]
+        if truth:
+            point_ids.add(truth)
+assert pixel_ids and pixel_ids & point_ids, (sorted(pixel_ids), sorted(point_ids))
 PY
 check "raw bag: mono16 kelvin range, full clouds with ring and truth_id, people in them" test "$(cat "$dir/raw_check")" = ""
 

@@ -106,6 +106,8 @@ struct SyntheticFrame {
   std::vector<float> full_intensity;
   std::vector<std::uint16_t> full_ring;        // with `raw`: the beam of each full point
   std::vector<std::uint32_t> full_truth_id;    // with `raw`: person id of each point, 0 = none
+  cv::Mat truth_person_ids;  // with `raw`: CV_16UC1, the person id each pixel shows (0 = none), every
+                             // person rendered, at any range (the ideal mask holds only detectable ones)
   PeopleCounts counts;     // as the ingest path counts them (core countPeople)
   std::vector<PersonInFrame> people;  // every person within detection range
 };
