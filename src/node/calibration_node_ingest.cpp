@@ -163,12 +163,9 @@ void CalibrationNode::onFrame(const sensor_msgs::Image::ConstPtr& image,
     // Decoder errors name their topic; size checks against camera_info concern the mask.
     const std::string where =
         outcome.error.find('/') != std::string::npos ? "" : " (" + mask_topic_ + ")";
-    if (const auto held_back = fault_throttle_.admit(where + outcome.error)) {
-      ROS_WARN("bad frame at %.3f%s: %s (%llu bad so far)%s", image->header.stamp.toSec(),
-               where.c_str(), outcome.error.c_str(),
-               static_cast<unsigned long long>(builder_->counts()[GateDecision::kBadMessage]),
-               fault_throttle_.heldBackText(*held_back).c_str());
-    }
+    const std::string line = bad_frames_.report(image->header.stamp.toSec(), where, outcome.error,
+                                                FaultThrottle::Clock::now());
+    if (!line.empty()) ROS_WARN("%s", line.c_str());
     return;
   }
   if (outcome.decision != GateDecision::kKept) {

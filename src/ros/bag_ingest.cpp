@@ -2,6 +2,8 @@
 
 #include "thermal_lidar_calibration/ros/bag_ingest.hpp"
 
+#include "thermal_lidar_calibration/app/bad_frame_reporter.hpp"
+
 #include "thermal_lidar_calibration/ros/frame_synchronizer.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 
@@ -171,19 +173,13 @@ BagIngestStats ingestBag(rosbag::Bag& bag, const BagTopics& topics, const CorePa
                          PersonDetectionAdapter* detectors) {
   if (topics.detect && !detectors) throw std::logic_error("ingestBag: detect without detectors");
   BagIngestStats stats;
-  // One line for the first of each distinct error (at most a few kinds), the rest counted.
+  // The node's account and wording (BadFrameReporter), in the bag's own time: one line per kind
+  // of fault and 5 s of data, counting the rest; every error also counted for the summary.
+  BadFrameReporter reporter;
   const auto report_bad = [&](double stamp_s, const std::string& error) {
-    const std::uint64_t seen = ++stats.bad_message_errors[error];
-    if (seen != 1 || !callbacks.warn) return;
-    const std::size_t distinct = stats.bad_message_errors.size();
-    if (distinct <= kMaxDistinctWarnings) {
-      char stamp[32];
-      std::snprintf(stamp, sizeof(stamp), "%.3f", stamp_s);
-      callbacks.warn(std::string("bad frame at t = ") + stamp + " s: " + error +
-                     " (counted; later ones with this error not shown)");
-    } else if (distinct == kMaxDistinctWarnings + 1) {
-      callbacks.warn("more distinct bad-frame errors: not shown, counted in the summary");
-    }
+    ++stats.bad_message_errors[error];
+    const std::string line = reporter.reportAtStamp(stamp_s, "", error);
+    if (!line.empty() && callbacks.warn) callbacks.warn(line);
   };
   const auto on_frame = [&](const sensor_msgs::Image::ConstPtr& image,
                             const sensor_msgs::Image::ConstPtr& mask,

@@ -161,6 +161,28 @@ TEST_F(CalibrateBagCli, OutputInAMissingDirectoryIsRefusedAtOnce) {
   EXPECT_NE(e.find("does not exist"), std::string::npos) << e;
 }
 
+// Bad frames are said as the node says them (BadFrameReporter): one line per kind of fault and
+// 5 s of the bag's own time, the next counting the rest; before, each distinct text (sizes in
+// it) was a new warning, up to 5.
+TEST_F(CalibrateBagCli, BadFramesAreSaidOncePerKindAndFiveSecondsOfBagTime) {
+  BagSpec spec;
+  spec.frames = 120;  // 12 s at 10 Hz, every frame's mask disagreeing with camera_info
+  spec.camera_info_width = 200;
+  const RunResult r = run("--bag '" + bag(spec) + "' --output '" + dir_ + "/out.yaml'");
+  expectOneLineError(r);
+  int lines = 0;
+  std::istringstream err(r.err);
+  std::string line, last_bad;
+  while (std::getline(err, line)) {
+    if (line.find("warning: bad frame at") != std::string::npos) {
+      ++lines;
+      last_bad = line;
+    }
+  }
+  EXPECT_EQ(lines, 3) << r.err;  // at 0 s, 5 s and 10 s of the bag
+  EXPECT_NE(last_bad.find("more like it in the last 5 s"), std::string::npos) << last_bad;
+}
+
 TEST_F(CalibrateBagCli, UsageErrorsExitWithTwo) {
   expectOneLineError(run(""), 2);
   expectOneLineError(run("--bag x.bag --output y.yaml --algorithm 3"), 2);

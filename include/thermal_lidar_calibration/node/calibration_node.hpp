@@ -10,6 +10,7 @@
 #include "thermal_lidar_calibration/ros/calibrated_tf_publisher.hpp"
 #include "thermal_lidar_calibration/app/calibration_worker.hpp"
 #include "thermal_lidar_calibration/ros/dataset_bag.hpp"
+#include "thermal_lidar_calibration/app/bad_frame_reporter.hpp"
 #include "thermal_lidar_calibration/app/fault_throttle.hpp"
 #include "thermal_lidar_calibration/app/input_rates.hpp"
 #include "thermal_lidar_calibration/node/callback_guard.hpp"
@@ -148,6 +149,7 @@ class CalibrationNode {
   ros::WallTime last_progress_log_;
   std::uint64_t last_logged_considered_ = ~0ull;
   FaultThrottle fault_throttle_{kFaultLogPeriodS};
+  BadFrameReporter bad_frames_{kFaultLogPeriodS};  // the wording calibrate_bag uses too
   CallbackGuard guard_{kFaultLogPeriodS};  // no exception from a callback ends the node
 };
 
