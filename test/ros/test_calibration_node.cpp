@@ -11,6 +11,8 @@
 
 #include <thermal_lidar_calibration/CalibrationStatus.h>
 
+#include "../support/node_observer.hpp"
+
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <diagnostic_msgs/DiagnosticArray.h>
@@ -34,76 +36,11 @@
 #include <string>
 #include <vector>
 
-using thermal_lidar_calibration::CalibrationStatus;
 using thermal_lidar_calibration::Extrinsic;
 
+using namespace node_observer;
+
 namespace {
-
-struct Observed {
-  std::mutex mutex;
-  std::vector<std::string> states;  // distinct consecutive state names
-  CalibrationStatus last_status;
-  int status_messages = 0;
-  // child frame -> (publisher, transform) for every /tf_static transform seen
-  std::multimap<std::string, std::pair<std::string, geometry_msgs::TransformStamped>> tf_static;
-  std::vector<std::string> node_warnings;  // /rosout WARN+ from calibration_node
-  std::map<std::string, diagnostic_msgs::DiagnosticStatus> diagnostics;  // latest, by name
-  std::vector<std::string> node_tf_static_children;  // of the node's latest /tf_static message
-};
-
-Observed g_observed;
-
-void onDiagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr& msg) {
-  std::lock_guard<std::mutex> lock(g_observed.mutex);
-  for (const auto& status : msg->status) g_observed.diagnostics[status.name] = status;
-}
-
-void onStatus(const CalibrationStatus::ConstPtr& msg) {
-  std::lock_guard<std::mutex> lock(g_observed.mutex);
-  if (g_observed.states.empty() || g_observed.states.back() != msg->state_name) {
-    g_observed.states.push_back(msg->state_name);
-  }
-  g_observed.last_status = *msg;
-  ++g_observed.status_messages;
-}
-
-void onTfStatic(const ros::MessageEvent<tf2_msgs::TFMessage const>& event) {
-  std::lock_guard<std::mutex> lock(g_observed.mutex);
-  for (const auto& t : event.getMessage()->transforms) {
-    g_observed.tf_static.emplace(t.child_frame_id, std::make_pair(event.getPublisherName(), t));
-  }
-  if (event.getPublisherName().find("calibration_node") != std::string::npos) {
-    g_observed.node_tf_static_children.clear();
-    for (const auto& t : event.getMessage()->transforms) g_observed.node_tf_static_children.push_back(t.child_frame_id);
-  }
-}
-
-void onRosout(const rosgraph_msgs::Log::ConstPtr& msg) {
-  if (msg->level < rosgraph_msgs::Log::WARN) return;
-  if (msg->name.find("calibration_node") == std::string::npos) return;
-  std::lock_guard<std::mutex> lock(g_observed.mutex);
-  g_observed.node_warnings.push_back(msg->msg);
-}
-
-template <typename Predicate>
-bool waitFor(double timeout_s, Predicate predicate) {
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
-  while (ros::ok() && ros::WallTime::now() < end) {
-    {
-      std::lock_guard<std::mutex> lock(g_observed.mutex);
-      if (predicate()) return true;
-    }
-    ros::WallDuration(0.05).sleep();
-  }
-  std::lock_guard<std::mutex> lock(g_observed.mutex);
-  return predicate();
-}
-
-std::string joined(const std::vector<std::string>& v) {
-  std::string s;
-  for (const auto& x : v) s += (s.empty() ? "" : " -> ") + x;
-  return s;
-}
 
 Eigen::Isometry3d toIsometry(const geometry_msgs::Transform& t) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -529,10 +466,7 @@ int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, "calibration_node_test");
   ros::NodeHandle nh;
-  ros::Subscriber status_sub = nh.subscribe("calibration_node/status", 100, onStatus);
-  ros::Subscriber tf_sub = nh.subscribe("/tf_static", 100, onTfStatic);
-  ros::Subscriber rosout_sub = nh.subscribe("/rosout", 1000, onRosout);
-  ros::Subscriber diagnostics_sub = nh.subscribe("/diagnostics", 100, onDiagnostics);
+  const std::vector<ros::Subscriber> subscribers = subscribeToNode(nh);
   ros::AsyncSpinner spinner(2);
   spinner.start();
   const int result = RUN_ALL_TESTS();

@@ -12,6 +12,7 @@
 #include <rosgraph_msgs/Log.h>
 #include <sensor_msgs/Image.h>
 #include <std_srvs/Trigger.h>
+#include <tf2_msgs/TFMessage.h>
 
 #include <atomic>
 #include <functional>
@@ -26,8 +27,12 @@ using thermal_lidar_calibration::CalibrationStatus;
 
 struct Observed {
   std::mutex mutex;
+  std::vector<std::string> states;  // distinct consecutive state names
   CalibrationStatus last_status;
   int status_messages = 0;
+  // child frame -> (publisher, transform) for every /tf_static transform seen
+  std::multimap<std::string, std::pair<std::string, geometry_msgs::TransformStamped>> tf_static;
+  std::vector<std::string> node_tf_static_children;  // of the node's latest /tf_static message
   int overlay_images = 0;
   std::vector<std::string> node_warnings;  // /rosout WARN+ from calibration_node
   std::map<std::string, diagnostic_msgs::DiagnosticStatus> diagnostics;  // latest, by name
@@ -37,8 +42,22 @@ inline Observed g_observed;
 
 inline void onStatus(const CalibrationStatus::ConstPtr& msg) {
   std::lock_guard<std::mutex> lock(g_observed.mutex);
+  if (g_observed.states.empty() || g_observed.states.back() != msg->state_name) {
+    g_observed.states.push_back(msg->state_name);
+  }
   g_observed.last_status = *msg;
   ++g_observed.status_messages;
+}
+
+inline void onTfStatic(const ros::MessageEvent<tf2_msgs::TFMessage const>& event) {
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  for (const auto& t : event.getMessage()->transforms) {
+    g_observed.tf_static.emplace(t.child_frame_id, std::make_pair(event.getPublisherName(), t));
+  }
+  if (event.getPublisherName().find("calibration_node") != std::string::npos) {
+    g_observed.node_tf_static_children.clear();
+    for (const auto& t : event.getMessage()->transforms) g_observed.node_tf_static_children.push_back(t.child_frame_id);
+  }
 }
 
 inline void onOverlay(const sensor_msgs::Image::ConstPtr&) {
@@ -63,6 +82,7 @@ inline void onRosout(const rosgraph_msgs::Log::ConstPtr& msg) {
 // The subscriptions the helpers read; keep the returned subscribers alive.
 inline std::vector<ros::Subscriber> subscribeToNode(ros::NodeHandle& nh) {
   return {nh.subscribe("calibration_node/status", 100, onStatus),
+          nh.subscribe("/tf_static", 100, onTfStatic),
           nh.subscribe("/rosout", 1000, onRosout),
           nh.subscribe("/diagnostics", 100, onDiagnostics),
           nh.subscribe("thermal/image_raw", 10, onInputImage)};
@@ -91,6 +111,12 @@ inline std::function<bool()> said(std::vector<std::string> parts) {
     }
     return false;
   };
+}
+
+inline std::string joined(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : " -> ") + x;
+  return s;
 }
 
 inline std::string warnings() {
