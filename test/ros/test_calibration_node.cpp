@@ -462,15 +462,4 @@ TEST(NodeBadMessages, ATopicThatStopsIsNamedOnDiagnosticsAndInTheLog) {
   })) << joined(g_observed.node_warnings);
 }
 
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "calibration_node_test");
-  ros::NodeHandle nh;
-  const std::vector<ros::Subscriber> subscribers = subscribeToNode(nh);
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  const int result = RUN_ALL_TESTS();
-  spinner.stop();
-  ros::shutdown();
-  return result;
-}
+int main(int argc, char** argv) { return runNodeTests(argc, argv, "calibration_node_test"); }

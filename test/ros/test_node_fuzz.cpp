@@ -187,15 +187,4 @@ TEST(NodeFuzz, ThousandsOfMalformedMessagesWhileADrivePlays) {
   EXPECT_LT(trans_m, 0.05);
 }
 
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "node_fuzz_test");
-  ros::NodeHandle nh;
-  const std::vector<ros::Subscriber> subscribers = subscribeToNode(nh);
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  const int result = RUN_ALL_TESTS();
-  spinner.stop();
-  ros::shutdown();
-  return result;
-}
+int main(int argc, char** argv) { return runNodeTests(argc, argv, "node_fuzz_test"); }

@@ -259,15 +259,4 @@ TEST(NodeDiskFull, SaveAndResetAnswerOnlyWhatTheyChecked) {
   EXPECT_FALSE(contains(r.message, "holds")) << r.message;
 }
 
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "node_hostile_test");
-  ros::NodeHandle nh;
-  const std::vector<ros::Subscriber> subscribers = subscribeToNode(nh);
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  const int result = RUN_ALL_TESTS();
-  spinner.stop();
-  ros::shutdown();
-  return result;
-}
+int main(int argc, char** argv) { return runNodeTests(argc, argv, "node_hostile_test"); }

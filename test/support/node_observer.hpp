@@ -141,4 +141,19 @@ inline void expectAlive(const std::string& after) {
   EXPECT_TRUE(save.call(trigger)) << "~save did not answer after " << after;
 }
 
+// A rostest program's main(): gtest and ROS initialised, the node observed, the tests run with
+// callbacks served on two threads.
+inline int runNodeTests(int argc, char** argv, const char* node_name) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, node_name);
+  ros::NodeHandle nh;
+  const std::vector<ros::Subscriber> subscribers = subscribeToNode(nh);
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  const int result = RUN_ALL_TESTS();
+  spinner.stop();
+  ros::shutdown();
+  return result;
+}
+
 }  // namespace node_observer
