@@ -15,10 +15,22 @@ namespace ros_io {
 
 OverlayPublisher::OverlayPublisher(ros::NodeHandle& private_nh, int max_points,
                                    std::string clusters_topic)
-    : it_(private_nh), max_points_(max_points), clusters_topic_(std::move(clusters_topic)) {
-  publisher_ = it_.advertise("overlay", 1);
-  cloud_subscriber_ = private_nh.subscribe("overlay_cloud", 1, &OverlayPublisher::onCloud, this);
-  cloud_topic_ = cloud_subscriber_.getTopic();
+    : it_(private_nh), max_points_(max_points), clusters_topic_(std::move(clusters_topic)),
+      private_nh_(private_nh) {
+  const image_transport::SubscriberStatusCallback changed =
+      [this](const image_transport::SingleSubscriberPublisher&) { onOverlayConnection(); };
+  publisher_ = it_.advertise("overlay", 1, changed, changed);
+  cloud_topic_ = private_nh_.resolveName("overlay_cloud");
+}
+
+void OverlayPublisher::onOverlayConnection() {
+  if (publisher_.getNumSubscribers() > 0 && !cloud_subscriber_) {
+    cloud_subscriber_ = private_nh_.subscribe("overlay_cloud", 1, &OverlayPublisher::onCloud, this);
+  } else if (publisher_.getNumSubscribers() == 0 && cloud_subscriber_) {
+    cloud_subscriber_.shutdown();
+    cloud_subscriber_ = ros::Subscriber();
+    cloud_msg_.reset();  // a stale cloud must not be drawn when someone looks again
+  }
 }
 
 void OverlayPublisher::setCamera(const CameraModel& camera) {

@@ -86,6 +86,22 @@ TEST(NodeHostile, FarApartStampsDoNotEndTheNode) {
 // 2^32-1 x 2^32-1 cloud with 16 bytes spun the callback thread at 100 % (~status and ~save
 // stopped), width 1e8 with 16 bytes segfaulted, fields x, x, z (no y) ended the node. Each is
 // now refused by the ingest path's cloud check, and the overlay keeps coming.
+// A full cloud at 10 Hz costs its deserialization even when nobody looks (issue 10): the node
+// subscribes ~overlay_cloud only while someone watches ~overlay.
+TEST(NodeHostile, OverlayCloudIsSubscribedOnlyWhileOverlayIsWatched) {
+  ros::NodeHandle nh;
+  auto cloud_pub = nh.advertise<sensor_msgs::PointCloud2>("calibration_node/overlay_cloud", 1);
+  ros::WallDuration(2.0).sleep();
+  EXPECT_EQ(cloud_pub.getNumSubscribers(), 0u) << "~overlay_cloud subscribed with nobody watching";
+  {
+    ros::Subscriber overlay_sub = nh.subscribe("calibration_node/overlay", 1, onOverlay);
+    EXPECT_TRUE(waitFor(10.0, [&] { return cloud_pub.getNumSubscribers() > 0; }))
+        << "~overlay_cloud not subscribed while ~overlay is watched";
+  }
+  EXPECT_TRUE(waitFor(10.0, [&] { return cloud_pub.getNumSubscribers() == 0; }))
+      << "~overlay_cloud still subscribed after the last ~overlay subscriber left";
+}
+
 TEST(NodeHostile, MalformedOverlayCloudAfterTheResult) {
   ASSERT_TRUE(waitFor(240.0, [] { return g_observed.last_status.state_name == "done"; }))
       << "no result: " << g_observed.last_status;

@@ -24,7 +24,8 @@ namespace ros_io {
 
 class OverlayPublisher {
  public:
-  // Advertises ~overlay and subscribes ~overlay_cloud on `private_nh`.
+  // Advertises ~overlay on `private_nh`; ~overlay_cloud is subscribed only while someone
+  // watches ~overlay (a full cloud at 10 Hz costs its deserialization even when nobody looks).
   OverlayPublisher(ros::NodeHandle& private_nh, int max_points, std::string clusters_topic);
 
   void setCamera(const CameraModel& camera);
@@ -42,11 +43,14 @@ class OverlayPublisher {
   const DecodedClusters& decodedClusters();
   void decodeCloud();
 
+  void onOverlayConnection();  // (un)subscribes ~overlay_cloud with ~overlay's subscribers
+
   image_transport::ImageTransport it_;
-  image_transport::Publisher publisher_;
-  ros::Subscriber cloud_subscriber_;
   int max_points_;
   std::string clusters_topic_;
+  ros::NodeHandle private_nh_;
+  image_transport::Publisher publisher_;
+  ros::Subscriber cloud_subscriber_;
   std::string cloud_topic_;  // resolved ~overlay_cloud, for messages
   std::unique_ptr<OverlayRenderer> renderer_;
   std::optional<Extrinsic> estimate_;
