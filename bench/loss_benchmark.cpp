@@ -3,10 +3,13 @@
 //                      nearest (paper) and bilinear (refinement) rules, with and without lens
 //                      distortion;
 //   BM_DefaultRun      the whole default calibration (Algorithm 2 at Table 1 + refinement) on
-//                      60 pairs of ~100 points, 2 threads.
+//                      60 pairs of ~100 points, 2 threads;
+//   BM_QualityAfterRun the quality assessment after that run (100-resample bootstrap, coverage,
+//                      verdict): issue 8 allows it at most the default run's own time.
 // Run: scripts/benchmark.sh (builds Release, then runs this binary).
 #include "thermal_lidar_calibration/core/calibrator.hpp"
 #include "thermal_lidar_calibration/core/loss.hpp"
+#include "thermal_lidar_calibration/core/quality_assessment.hpp"
 
 #include "../test/support/synthetic_pairs.hpp"
 
@@ -94,6 +97,26 @@ void BM_DefaultRun(benchmark::State& state) {
   state.counters["truth_loss_px"] = truth_loss;
 }
 BENCHMARK(BM_DefaultRun)->Arg(2)->ArgName("threads")->Unit(benchmark::kSecond)->Iterations(1);
+
+void BM_QualityAfterRun(benchmark::State& state) {
+  const auto& pairs = benchPairs(true);
+  CalibrationConfig config;
+  config.num_threads = static_cast<int>(state.range(0));
+  const CalibrationResult r = calibrate(test_support::fieldsafeCamera(true), pairs, config);
+  QualityConfig quality;  // defaults: 100 resamples
+  quality.uncertainty.num_threads = config.num_threads;
+  double verdict = 0, max_rot = 0;
+  for (auto _ : state) {
+    const QualityAssessment q =
+        assessQuality(test_support::fieldsafeCamera(true), pairs, r, quality, config.behind_camera_penalty_c1);
+    verdict = static_cast<double>(q.verdict.verdict);
+    max_rot = q.uncertainty ? q.uncertainty->rotation_deg.maxCoeff() : 0.0;
+  }
+  state.counters["resamples"] = quality.uncertainty.resamples;
+  state.counters["max_rot_halfwidth_deg"] = max_rot;
+  state.counters["verdict"] = verdict;  // 0 good, 1 usable, 2 collect_more
+}
+BENCHMARK(BM_QualityAfterRun)->Arg(2)->ArgName("threads")->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace
 
