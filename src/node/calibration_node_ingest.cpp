@@ -61,12 +61,17 @@ void CalibrationNode::onCameraInfo(const sensor_msgs::CameraInfo::ConstPtr& msg)
   });
 }
 
+// Every input message: its topic's rate, and the data time from which the tf check waits.
+void CalibrationNode::noteInput(std::size_t topic) {
+  input_rates_->message(topic, InputRates::Clock::now());
+  if (!first_input_time_ && !ros::Time::now().isZero()) first_input_time_ = ros::Time::now();
+}
+
 // Input callbacks: the synchronizer refuses stamps ApproximateTime cannot handle (named in a
 // throttled warning); anything else that throws is caught by the guard, never ends the node.
 void CalibrationNode::onImage(const sensor_msgs::Image::ConstPtr& msg) {
   guard_.run(image_topic_, [&] {
-    input_rates_->message(0, InputRates::Clock::now());
-    if (!first_input_time_ && !ros::Time::now().isZero()) first_input_time_ = ros::Time::now();
+    noteInput(0);
     reportSyncFault(image_topic_, synchronizer_->addImage(msg));
     overlay_->onImage(msg);
   });
@@ -74,8 +79,7 @@ void CalibrationNode::onImage(const sensor_msgs::Image::ConstPtr& msg) {
 
 void CalibrationNode::onMask(const sensor_msgs::Image::ConstPtr& msg) {
   guard_.run(mask_topic_, [&] {
-    input_rates_->message(1, InputRates::Clock::now());
-    if (!first_input_time_ && !ros::Time::now().isZero()) first_input_time_ = ros::Time::now();
+    noteInput(1);
     reportSyncFault(mask_topic_, synchronizer_->addMask(msg));
     overlay_->onMask(msg);
   });
@@ -83,8 +87,7 @@ void CalibrationNode::onMask(const sensor_msgs::Image::ConstPtr& msg) {
 
 void CalibrationNode::onClusters(const sensor_msgs::PointCloud2::ConstPtr& msg) {
   guard_.run(clusters_topic_, [&] {
-    input_rates_->message(2, InputRates::Clock::now());
-    if (!first_input_time_ && !ros::Time::now().isZero()) first_input_time_ = ros::Time::now();
+    noteInput(2);
     reportSyncFault(clusters_topic_, synchronizer_->addClusters(msg));
     overlay_->onClusters(msg);
   });

@@ -2,10 +2,11 @@
 
 #include "thermal_lidar_calibration/ros/calibrated_tf_publisher.hpp"
 
+#include "thermal_lidar_calibration/ros/msg_conversion.hpp"
+
 #include <Eigen/Geometry>
 #include <ros/this_node.h>
 
-#include <algorithm>
 
 
 namespace thermal_lidar_calibration {
@@ -42,8 +43,7 @@ void CalibratedTfPublisher::onTf(const ros::MessageEvent<tf2_msgs::TFMessage con
   if (event.getPublisherName() == ros::this_node::getName()) return;  // our own result
   std::lock_guard<std::mutex> lock(mutex_);
   for (const auto& t : event.getMessage()->transforms) {
-    const auto strip = [](const std::string& id) { return id.substr(std::min(id.find_first_not_of('/'), id.size())); };
-    others_[strip(t.child_frame_id)] = "'" + strip(t.header.frame_id) + "' (from " + event.getPublisherName() + ")";
+    others_[tfFrameId(t.child_frame_id)] = "'" + tfFrameId(t.header.frame_id) + "' (from " + event.getPublisherName() + ")";
   }
 }
 

@@ -27,8 +27,6 @@ class FaultThrottle {
   // std::nullopt: stay silent (the fault is counted for its kind's next line). Otherwise report
   // now; the value is how many faults of this kind were held back since its previous line.
   std::optional<std::uint64_t> admit(const std::string& fault, Clock::time_point now = Clock::now());
-  // admit() for callers that do not print the count.
-  bool shouldReport(const std::string& fault) { return admit(fault).has_value(); }
 
   // " (and 212 more like it in the last 5 s)", or "" for 0.
   std::string heldBackText(std::uint64_t held_back) const;

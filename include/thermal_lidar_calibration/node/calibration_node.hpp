@@ -78,6 +78,7 @@ class CalibrationNode {
   void onClusters(const sensor_msgs::PointCloud2::ConstPtr& msg);
   void reportSyncFault(const std::string& topic, const FrameSynchronizer::AddOutcome& outcome);
   void reportFrameIdConflict();
+  void noteInput(std::size_t topic);  // 0 image, 1 mask, 2 clusters (input_rates_'s order)
   void onCameraInfo(const sensor_msgs::CameraInfo::ConstPtr& msg);
   void onFrame(const sensor_msgs::Image::ConstPtr& image, const sensor_msgs::Image::ConstPtr& mask,
                const sensor_msgs::PointCloud2::ConstPtr& clusters);
