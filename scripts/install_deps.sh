@@ -5,7 +5,7 @@ set -euo pipefail
 export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
 
 packages=(
-  build-essential cmake ros-core-dev catkin libroscpp-dev librosbag-dev libsensor-msgs-dev
+  build-essential cmake ros-core-dev catkin libroscpp-dev librosbag-dev libroslz4-dev libsensor-msgs-dev
   libgeometry-msgs-dev libstd-srvs-dev libtf2-ros-dev libtf2-msgs-dev libcv-bridge-dev
   libimage-transport-dev libmessage-filters-dev libopencv-dev libeigen3-dev libyaml-cpp-dev
   python3-rostest librostest-dev ros-message-generation ros-message-runtime rosbash

@@ -1,10 +1,18 @@
 // DatasetBagWriter: every pair whose write() returned is in the bag, also when the disk fills
-// (simulated with RLIMIT_FSIZE: a write past the limit fails with EFBIG, as ENOSPC would).
+// (simulated with RLIMIT_FSIZE: a write past the limit fails with EFBIG, as ENOSPC would) and
+// when the process is killed at any moment; an append costs the same however many pairs the bag
+// holds (one connection per topic, the index grows by one chunk-info record per pair); rosbag
+// reads the bag, and a bag written by rosbag itself (older versions of the node) is continued.
 
 #include "thermal_lidar_calibration/ros/dataset_bag.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 
+#include "../support/dataset_pair_messages.hpp"
 #include "../support/test_files.hpp"
+
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <std_msgs/String.h>
 
 #include <gtest/gtest.h>
 
@@ -12,52 +20,25 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <csignal>
-#include <filesystem>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <random>
+#include <set>
 #include <string>
+#include <thread>
 
 namespace tlc = thermal_lidar_calibration;
 using tlc::ros_io::DatasetBagWriter;
 
 namespace {
 
-struct PairMessages {
-  sensor_msgs::Image image, mask;
-  sensor_msgs::PointCloud2 clusters;
-  sensor_msgs::CameraInfo info;
-};
+using tlc::test_support::PairMessages;
 
-// A 640x512 mono16 image of noise (compresses poorly, like a real thermal frame), a mask with
-// one person and a cluster of 200 points, stamped `stamp_s`.
 PairMessages makePair(double stamp_s, unsigned seed) {
-  std::mt19937 rng(seed);
-  cv::Mat image(512, 640, CV_16UC1);
-  for (int r = 0; r < image.rows; ++r) {
-    for (int c = 0; c < image.cols; ++c) image.at<std::uint16_t>(r, c) = 7000 + rng() % 500;
-  }
-  cv::Mat mask = cv::Mat::zeros(512, 640, CV_8UC1);
-  mask(cv::Rect(300, 200, 40, 120)).setTo(1);
-  std::vector<Eigen::Vector3f> points;
-  std::vector<std::int32_t> labels;
-  for (int i = 0; i < 200; ++i) {
-    points.emplace_back(8.0f, 0.001f * i, 0.01f * i);
-    labels.push_back(1);
-  }
-  tlc::CameraModel camera;
-  camera.width = 640;
-  camera.height = 512;
-  camera.fx = camera.fy = 770.0;
-  camera.cx = 320.0;
-  camera.cy = 256.0;
-  PairMessages m;
-  m.image = tlc::ros_io::encodeMonoImage(image, "thermal_optical", stamp_s);
-  m.mask = tlc::ros_io::encodeMonoImage(mask, "thermal_optical", stamp_s);
-  m.clusters = tlc::ros_io::encodeClusters(points, labels, "velodyne", stamp_s);
-  m.info = tlc::ros_io::cameraInfoFromModel(camera);
-  return m;
+  return tlc::test_support::makePairMessages(stamp_s, seed);
 }
 
 void write(DatasetBagWriter& writer, const PairMessages& m) {
@@ -109,4 +90,185 @@ TEST(DatasetBagWriter, FullDiskIsAnErrorAndEarlierPairsSurvive) {
   EXPECT_EQ(static_cast<int>(contents.frames.size()), written);
   EXPECT_TRUE(contents.errors.empty());
   std::filesystem::remove_all(dir);
+}
+
+namespace {
+
+std::size_t connectionsIn(const std::string& path) {
+  rosbag::Bag bag(path, rosbag::bagmode::Read);
+  return rosbag::View(bag).getConnections().size();
+}
+
+}  // namespace
+
+// Issue 12 item 9: rosbag's append mode added 5 connection records (~15 KB with their message
+// definitions) per pair and rewrote them all on every append. Now the bag has one connection per
+// topic, and each pair adds one chunk-info record (< 200 bytes) to the index an append rewrites.
+TEST(DatasetBagWriter, AnAppendAddsOnlyOneSmallIndexRecord) {
+  const std::string dir = tlc::test_support::tempDir("tlc_dataset_index_");
+  const std::string path = dir + "/dataset.bag";
+  DatasetBagWriter writer(path, false);
+  write(writer, makePair(100.0, 0));
+  const std::size_t index_after_one = writer.indexBytes();
+  for (int i = 1; i < 40; ++i) write(writer, makePair(100.0 + i, i % 3));
+  EXPECT_EQ(connectionsIn(path), 5u);
+  const double per_pair = static_cast<double>(writer.indexBytes() - index_after_one) / 39.0;
+  EXPECT_LT(per_pair, 200.0) << "the index grows by " << per_pair << " bytes per pair";
+  EXPECT_EQ(tlc::ros_io::countDatasetBagPairs(path), 40u);
+  // A writer that continues the bag (~resume) reuses its connections too.
+  DatasetBagWriter resumed(path, true);
+  write(resumed, makePair(200.0, 1));
+  EXPECT_EQ(connectionsIn(path), 5u);
+  EXPECT_EQ(tlc::ros_io::countDatasetBagPairs(path), 41u);
+}
+
+// What rosbag reads back is what was written: the messages, their types, topics and times.
+TEST(DatasetBagWriter, RosbagReadsEveryMessageAsWritten) {
+  const std::string dir = tlc::test_support::tempDir("tlc_dataset_read_");
+  const std::string path = dir + "/dataset.bag";
+  std::vector<PairMessages> pairs;
+  {
+    DatasetBagWriter writer(path, false);
+    for (int i = 0; i < 3; ++i) {
+      pairs.push_back(makePair(1600000000.0 + 0.5 * i, i));
+      write(writer, pairs.back());
+    }
+  }
+  rosbag::Bag bag(path, rosbag::bagmode::Read);
+  rosbag::View view(bag);
+  std::size_t images = 0, messages = 0;
+  std::set<std::string> topics;
+  for (const rosbag::MessageInstance& m : view) {
+    ++messages;
+    topics.insert(m.getTopic());
+    if (m.getTopic() != tlc::ros_io::DatasetBagTopics::kImage) continue;
+    const auto image = m.instantiate<sensor_msgs::Image>();
+    ASSERT_TRUE(image);
+    ASSERT_LT(images, pairs.size());
+    EXPECT_EQ(m.getTime(), pairs[images].image.header.stamp);
+    EXPECT_EQ(image->data, pairs[images].image.data);
+    EXPECT_EQ(image->encoding, "mono16");
+    ++images;
+  }
+  EXPECT_EQ(images, 3u);
+  EXPECT_EQ(messages, 15u);
+  EXPECT_EQ(topics.size(), 5u);
+  const auto contents = tlc::ros_io::readDatasetBag(path);
+  EXPECT_EQ(contents.frames.size(), 3u);
+  EXPECT_TRUE(contents.errors.empty());
+}
+
+// A dataset bag written by rosbag::Bag (the node before this writer, in append mode) is continued.
+TEST(DatasetBagWriter, ContinuesABagWrittenByRosbag) {
+  const std::string dir = tlc::test_support::tempDir("tlc_dataset_old_");
+  const std::string path = dir + "/dataset.bag";
+  for (int i = 0; i < 2; ++i) {
+    const PairMessages m = makePair(100.0 + i, i);
+    rosbag::Bag bag(path, i == 0 ? rosbag::bagmode::Write : rosbag::bagmode::Append);
+    bag.setCompression(rosbag::compression::LZ4);
+    std_msgs::String marker;
+    marker.data = "pair";
+    const ros::Time t = m.image.header.stamp;
+    bag.write(tlc::ros_io::DatasetBagTopics::kCameraInfo, t, m.info);
+    bag.write(tlc::ros_io::DatasetBagTopics::kImage, t, m.image);
+    bag.write(tlc::ros_io::DatasetBagTopics::kMask, t, m.mask);
+    bag.write(tlc::ros_io::DatasetBagTopics::kClusters, t, m.clusters);
+    bag.write(tlc::ros_io::DatasetBagTopics::kMarker, t, marker);
+  }
+  ASSERT_EQ(connectionsIn(path), 10u);  // rosbag's append added a second set
+  DatasetBagWriter writer(path, true);
+  for (int i = 2; i < 4; ++i) write(writer, makePair(100.0 + i, i));
+  EXPECT_EQ(connectionsIn(path), 10u);
+  const auto contents = tlc::ros_io::readDatasetBag(path);
+  EXPECT_EQ(contents.frames.size(), 4u);
+  EXPECT_TRUE(contents.errors.empty());
+}
+
+// kill -9 at random moments while pairs are appended: every pair whose write() returned (reported
+// through a pipe) is in the bag afterwards, and the bag is continued by the next writer.
+TEST(DatasetBagWriter, AKillAtAnyMomentKeepsEveryWrittenPair) {
+  const std::string dir = tlc::test_support::tempDir("tlc_dataset_kill_");
+  const std::string path = dir + "/dataset.bag";
+  std::mt19937 rng(12);
+  const std::vector<PairMessages> pairs = {makePair(100.0, 1), makePair(100.0, 2)};
+  constexpr int kTrials = 30;
+  int acknowledged = 0, journals = 0;
+  for (int trial = 0; trial < kTrials; ++trial) {
+    int fds[2];
+    ASSERT_EQ(::pipe(fds), 0);
+    std::fflush(nullptr);
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      ::close(fds[0]);
+      DatasetBagWriter writer(path, true);
+      for (int i = 0;; ++i) {
+        PairMessages m = pairs[i % 2];
+        m.image.header.stamp = ros::Time(100.0 + trial * 1000 + i);
+        write(writer, m);
+        const char ack = 1;
+        if (::write(fds[1], &ack, 1) != 1) std::_Exit(3);
+      }
+    }
+    ::close(fds[1]);
+    std::this_thread::sleep_for(std::chrono::milliseconds(2 + rng() % 40));
+    ::kill(pid, SIGKILL);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    char acks[4096];
+    for (ssize_t n; (n = ::read(fds[0], acks, sizeof(acks))) > 0;) acknowledged += static_cast<int>(n);
+    ::close(fds[0]);
+    if (acknowledged == 0 && !std::filesystem::exists(path)) continue;  // killed before the first
+    journals += std::filesystem::exists(path + ".journal") ? 1 : 0;  // killed inside an append
+    const auto contents = tlc::ros_io::readDatasetBag(path);  // recovers from the journal
+    EXPECT_TRUE(contents.errors.empty());
+    const int in_bag = static_cast<int>(contents.frames.size());
+    EXPECT_GE(in_bag, acknowledged) << "trial " << trial << ": a written pair was lost";
+    EXPECT_LE(in_bag, acknowledged + 1) << "trial " << trial;
+    acknowledged = in_bag;  // a pair in the bag but not acknowledged counts from now on
+  }
+  EXPECT_GT(acknowledged, kTrials) << "the writer hardly ran: the trials show nothing";
+  std::printf("%d pairs written in %d kills, %d of them inside an append (recovered from the "
+              "journal)\n", acknowledged, kTrials, journals);
+  EXPECT_EQ(connectionsIn(path), 5u);
+}
+
+// A process that dies inside an append, after the journal is written and while the bag is half
+// overwritten (SIGXFSZ at a file size limit ends it there, every time): the next reader restores
+// the bag from the journal with every pair written before.
+TEST(DatasetBagWriter, ADeathInsideAnAppendIsUndoneFromTheJournal) {
+  const std::string dir = tlc::test_support::tempDir("tlc_dataset_death_");
+  const std::string path = dir + "/dataset.bag";
+  int fds[2];
+  ASSERT_EQ(::pipe(fds), 0);
+  std::fflush(nullptr);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::close(fds[0]);
+    const rlimit limit{3u << 20, 3u << 20};  // SIGXFSZ keeps its default action: the end
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    DatasetBagWriter writer(path, false);
+    for (int i = 0; i < 100; ++i) {
+      write(writer, makePair(100.0 + i, i % 3));
+      const char ack = 1;
+      if (::write(fds[1], &ack, 1) != 1) std::_Exit(3);
+    }
+    std::_Exit(0);
+  }
+  ::close(fds[1]);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  int acknowledged = 0;
+  char acks[256];
+  for (ssize_t n; (n = ::read(fds[0], acks, sizeof(acks))) > 0;) acknowledged += static_cast<int>(n);
+  ::close(fds[0]);
+  ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGXFSZ) << "the writer was not killed";
+  ASSERT_GE(acknowledged, 1);
+  ASSERT_TRUE(std::filesystem::exists(path + ".journal")) << "not killed inside an append";
+  const auto contents = tlc::ros_io::readDatasetBag(path);
+  EXPECT_EQ(static_cast<int>(contents.frames.size()), acknowledged);
+  EXPECT_TRUE(contents.errors.empty());
+  EXPECT_FALSE(std::filesystem::exists(path + ".journal"));
+  DatasetBagWriter resumed(path, true);
+  write(resumed, makePair(500.0, 1));
+  EXPECT_EQ(tlc::ros_io::countDatasetBagPairs(path), static_cast<std::size_t>(acknowledged) + 1);
 }

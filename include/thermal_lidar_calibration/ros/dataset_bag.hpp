@@ -4,21 +4,20 @@
 // /lidar/human_clusters, /thermal/camera_info) so calibrate_bag can re-run on it. The original
 // messages are stored (not the binarised masks), so a re-run decodes exactly what the node saw.
 //
-// Crash safety: each pair is written by opening the bag in append mode, writing and closing it.
-// rosbag's append truncates the index and rewrites the file header, so before every append the
-// bytes it will overwrite (file header and index) go to "<bag>.journal"; after a clean close the
-// journal is deleted. If the process dies in between, recoverDatasetBag() restores the bag as it
-// was before that append. A new bag is first written as "<bag>.tmp" and renamed. So a kill at any
-// moment leaves a readable bag with every pair whose write() returned.
+// Each pair is one chunk appended by BagAppender: an append costs the same at pair 500 as at pair 5,
+// and a kill at any moment leaves a readable bag with every pair whose write() returned (see
+// bag_appender.hpp for how).
 
 #include "thermal_lidar_calibration/core/calibration_pair.hpp"
 #include "thermal_lidar_calibration/core/camera_model.hpp"
+#include "thermal_lidar_calibration/ros/bag_appender.hpp"
 
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/PointCloud2.h>
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -42,22 +41,23 @@ class DatasetBagWriter {
   // `append`: continue an existing bag (call recoverDatasetBag first); otherwise an existing file
   // at `path` is kept as "<path>.previous" and a new bag starts with the first pair.
   DatasetBagWriter(std::string path, bool append);
+  ~DatasetBagWriter();
 
-  // Appends one pair (all four messages stamped with the image's time). Returns when the pair is
-  // on disk. Throws std::runtime_error naming the path and the reason.
+  // Appends one pair (all five messages stamped with the image's time). Returns when the pair is
+  // in the file. Throws std::runtime_error naming the path and the reason; the bag then holds
+  // the pairs it held before.
   void write(const sensor_msgs::Image& image, const sensor_msgs::Image& mask,
              const sensor_msgs::PointCloud2& clusters, const sensor_msgs::CameraInfo& camera_info);
   // Deletes the bag (and any journal); the next write() starts a new one.
   void clear();
 
   const std::string& path() const { return path_; }
+  // The bag's index (what each append rewrites), for the benchmark and tests.
+  std::size_t indexBytes() const;
 
  private:
-  void appendWithJournal(const sensor_msgs::Image& image, const sensor_msgs::Image& mask,
-                         const sensor_msgs::PointCloud2& clusters,
-                         const sensor_msgs::CameraInfo& camera_info);
   std::string path_;
-  bool exists_ = false;
+  std::unique_ptr<BagAppender> appender_;
 };
 
 // If "<path>.journal" exists (the process died during an append), restores the bag from it.
