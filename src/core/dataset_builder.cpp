@@ -162,6 +162,12 @@ std::optional<FrameIdConflict> DatasetBuilder::frameIdConflict(std::uint64_t min
                          refused_in_a_row_};
 }
 
+std::vector<CalibrationPair> DatasetBuilder::takePairs() {
+  std::vector<CalibrationPair> out;
+  out.swap(pairs_);
+  return out;
+}
+
 void DatasetBuilder::reset() {
   pairs_.clear();
   gate_.reset();

@@ -52,6 +52,9 @@ class DatasetBuilder {
   // kKept, or kBadMessage with the reason (e.g. recorded with a different camera).
   OfferOutcome restore(Frame frame);
   void reset();  // forget pairs and counts
+  // Hands over the kept pairs and forgets them, keeping the counts and the frame ids (the drift
+  // watch takes each pair as it is kept and must not hold hours of them here).
+  std::vector<CalibrationPair> takePairs();
 
   const std::vector<CalibrationPair>& pairs() const { return pairs_; }
   const RejectionCounts& counts() const { return gate_.counts(); }
