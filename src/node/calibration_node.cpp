@@ -43,7 +43,9 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     createBuilder(camera, params_.camera_info_file);
   }
   if (!params_.dataset_bag.empty() && params_.resume) resumeDataset();
-  recorder_ = std::make_unique<DatasetRecorder>(params_.dataset_bag, params_.resume, pairs_resumed_);
+  // A drift watch runs for hours: its pairs are not recorded.
+  recorder_ = std::make_unique<DatasetRecorder>(
+      params_.mode == NodeMode::kMonitor ? "" : params_.dataset_bag, params_.resume, pairs_resumed_);
   diagnostics_->add("dataset recording",
                     [this](NodeDiagnostics::Status& status) { recorder_->diagnose(status); });
   diagnostics_->add("frame ids", [this](NodeDiagnostics::Status& status) { diagnoseFrameIds(status); });
@@ -52,6 +54,7 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   diagnostics_->add("inputs", [this](NodeDiagnostics::Status& status) { diagnoseInputs(status); });
   diagnostics_->add("calibration", [this](NodeDiagnostics::Status& status) { diagnoseCalibration(status); });
   diagnostics_->add("tf", [this](NodeDiagnostics::Status& status) { diagnoseTf(status); });
+  diagnostics_->add("drift", [this](NodeDiagnostics::Status& status) { diagnoseDrift(status); });
   if (!builder_) {
     camera_info_sub_ = nh_.subscribe("thermal/camera_info", 1, &CalibrationNode::onCameraInfo, this);
   }
@@ -69,6 +72,8 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   calibrate_srv_ = private_nh_.advertiseService("calibrate", &CalibrationNode::onCalibrate, this);
   reset_srv_ = private_nh_.advertiseService("reset", &CalibrationNode::onReset, this);
   save_srv_ = private_nh_.advertiseService("save", &CalibrationNode::onSave, this);
+  accept_update_srv_ =
+      private_nh_.advertiseService("accept_update", &CalibrationNode::onAcceptUpdate, this);
   timer_ = private_nh_.createWallTimer(ros::WallDuration(1.0 / params_.status_rate_hz),
                                        &CalibrationNode::onTimer, this);
 
@@ -77,6 +82,10 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
            clusters_topic_.c_str(),
            params_.camera_info_file.empty() ? camera_info_topic_.c_str()
                                             : params_.camera_info_file.c_str());
+  if (params_.mode == NodeMode::kMonitor) {
+    setState(CalibrationStatus::MONITORING, "monitor mode: waiting for frames (and intrinsics)");
+    return;
+  }
   setState(CalibrationStatus::COLLECTING, "collecting");
   if (builder_ && static_cast<int>(builder_->pairs().size()) >= params_.core.pairs_required) {
     startOptimization("the resumed dataset already holds ~pairs_required pairs");
@@ -195,6 +204,7 @@ void CalibrationNode::onTimer(const ros::WallTimerEvent& /*event*/) {
     if (auto outcome = worker_.takeOutcome()) handleOutcome(std::move(*outcome));
     if (result_ && !result_published_ && tfCheckWaitOver()) publishResult();
     if (result_ && result_published_) watchTf();
+    updateDrift();
     logProgress(false);
     reportSilentInputs();
     publishStatus();

@@ -143,6 +143,10 @@ void CalibrationNode::onFrame(const sensor_msgs::Image::ConstPtr& image,
     return;
   }
   if (state_ == CalibrationStatus::OPTIMIZING || state_ == CalibrationStatus::DONE) return;
+  if (params_.mode == NodeMode::kMonitor &&
+      !ensureMonitoring(tfFrameId(image->header.frame_id), tfFrameId(clusters->header.frame_id))) {
+    return;
+  }
   if (stored_stamps_ns_.count(static_cast<long long>(image->header.stamp.toNSec())) != 0) {
     ROS_DEBUG("frame %.3f is already in the dataset", image->header.stamp.toSec());
     return;
@@ -174,6 +178,10 @@ void CalibrationNode::onFrame(const sensor_msgs::Image::ConstPtr& image,
   if (outcome.decision != GateDecision::kKept) {
     ROS_DEBUG("frame %.3f: %s (mask %d people, clusters %d)", image->header.stamp.toSec(),
               toString(outcome.decision), outcome.mask_people, outcome.cluster_people);
+    return;
+  }
+  if (state_ == CalibrationStatus::MONITORING) {
+    monitorKeptPairs();
     return;
   }
   stored_stamps_ns_.insert(static_cast<long long>(image->header.stamp.toNSec()));

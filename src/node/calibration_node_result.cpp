@@ -11,6 +11,10 @@ namespace ros_io {
 
 std::string CalibrationNode::startOptimization(const std::string& why) {
   if (state_ == CalibrationStatus::OPTIMIZING) return "refused: already optimizing";
+  if (state_ == CalibrationStatus::MONITORING) {
+    return "refused: monitoring (the drift watch refits by itself; ~accept_update takes a confirmed "
+           "change; ~reset restarts the watch)";
+  }
   if (worker_.busy()) return "refused: the previous optimization is still stopping; try again";
   if (!builder_) return "refused: no camera intrinsics yet (" + camera_info_topic_ + ")";
   const std::size_t n = builder_->pairs().size();
@@ -66,6 +70,7 @@ void CalibrationNode::handleOutcome(CalibrationWorker::Outcome outcome) {
                (write_error.empty() ? ""
                                     : "; result file NOT written (" + write_error +
                                           "); free the path and call ~save"));
+  if (params_.monitor_after_calibration) startMonitoring(result_->extrinsic, "this node's calibration");
 }
 
 bool CalibrationNode::tfCheckWaitOver() const {

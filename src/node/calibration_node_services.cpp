@@ -32,8 +32,21 @@ bool CalibrationNode::onReset(std_srvs::Trigger::Request& /*req*/, std_srvs::Tri
   const std::string bag_note = recorder_->enabled() ? "; " + recorder_->clear() : "";
   res.success = true;
   res.message = "reset: dropped " + std::to_string(n) + " pairs" + bag_note;
+  if (drift_) {
+    // The watch starts again from the extrinsic now in use, with an empty window.
+    const Extrinsic in_use = drift_->snapshot().reference;
+    const std::string origin = drift_reference_;
+    const auto seen = drift_->snapshot().pairs_seen;
+    drift_.reset();
+    res.message += "; drift watch restarted (dropped its " + std::to_string(seen) + " pairs)";
+    ROS_INFO("%s", res.message.c_str());
+    startMonitoring(in_use, origin);
+    return true;
+  }
   ROS_INFO("%s", res.message.c_str());
-  setState(CalibrationStatus::COLLECTING, res.message);
+  setState(params_.mode == NodeMode::kMonitor ? CalibrationStatus::MONITORING
+                                              : CalibrationStatus::COLLECTING,
+           res.message);
   return true;
 }
 

@@ -13,6 +13,7 @@ const char* stateName(std::uint8_t state) {
     case CalibrationStatus::OPTIMIZING: return "optimizing";
     case CalibrationStatus::DONE: return "done";
     case CalibrationStatus::FAILED: return "failed";
+    case CalibrationStatus::MONITORING: return "monitoring";
   }
   return "unknown";
 }
@@ -52,6 +53,16 @@ void CalibrationNode::logProgress(bool force) {
     ROS_INFO("optimizing: %s generation %d/%d, best loss %.3f px, %llu evaluations",
              p->stage.c_str(), p->generation, p->generations_total, p->best_loss,
              static_cast<unsigned long long>(p->evaluations));
+  } else if (state_ == CalibrationStatus::MONITORING && drift_) {
+    const DriftWatchWorker::Snapshot s = drift_->snapshot();
+    if (!force && s.pairs_seen == last_logged_considered_) return;
+    last_logged_considered_ = s.pairs_seen;
+    ROS_INFO("monitoring: drift %s, %llu kept pairs seen, %llu tests, latest change %.3f deg / "
+             "%.2f cm (reference %s)",
+             toString(s.state), static_cast<unsigned long long>(s.pairs_seen),
+             static_cast<unsigned long long>(s.tests),
+             s.last ? s.last->test.change.angle_deg : 0.0,
+             s.last ? s.last->test.change.translation_cm.norm() : 0.0, drift_reference_.c_str());
   } else {
     return;
   }
@@ -105,6 +116,7 @@ void CalibrationNode::publishStatus() {
   msg.recording_error = recorder_ ? recorder_->stopReason() : "";
   msg.output_file = params_.output_file;
   msg.child_frame = result_ && result_published_ ? published_child_ : "";
+  fillDriftStatus(msg);
   status_pub_.publish(msg);
 }
 

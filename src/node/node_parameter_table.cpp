@@ -15,6 +15,16 @@ ParameterTable<NodeParameters> makeNodeParameterTable() {
   ParameterTable<NodeParameters> t;
   auto node = t.fields();
   t.section("calibration_node only (calibrate_bag ignores these)");
+  node.choice("mode", &NodeParameters::mode,
+              {{"calibrate", NodeMode::kCalibrate}, {"monitor", NodeMode::kMonitor}},
+              "must be calibrate or monitor",
+              "calibrate: collect pairs and optimize; monitor: watch the extrinsic in use for drift "
+              "(from reference_file, else the live tf between the two frames)");
+  node.boolean("monitor_after_calibration", &NodeParameters::monitor_after_calibration,
+               "after a calibration, go on watching its result for drift");
+  node.boolean("auto_update", &NodeParameters::auto_update,
+               "drift watch: publish and write a confirmed new extrinsic without waiting for "
+               "~accept_update");
   node.text("output_file", &NodeParameters::output_file,
             TextRule::required("must name the result YAML file"),
             "result YAML; relative paths are under ROS_HOME");

@@ -99,6 +99,24 @@ CalibratedTfPublisher::Decision CalibratedTfPublisher::chooseChildFrame(
   return {camera_frame, ""};
 }
 
+std::optional<Extrinsic> CalibratedTfPublisher::lookupExtrinsic(const std::string& lidar_frame,
+                                                                 const std::string& camera_frame,
+                                                                 std::string* error) const {
+  try {
+    // Maps points of the source (LiDAR) frame into the target (camera) frame: p_C = R p_L + t.
+    const geometry_msgs::TransformStamped tf =
+        buffer_.lookupTransform(camera_frame, lidar_frame, ros::Time(0));
+    const auto& q = tf.transform.rotation;
+    const auto& t = tf.transform.translation;
+    const Eigen::Quaterniond rotation(q.w, q.x, q.y, q.z);
+    return Extrinsic::fromRotationMatrix(rotation.normalized().toRotationMatrix(),
+                                         Eigen::Vector3d(t.x, t.y, t.z));
+  } catch (const tf2::TransformException& e) {
+    if (error) *error = e.what();
+    return std::nullopt;
+  }
+}
+
 geometry_msgs::TransformStamped CalibratedTfPublisher::publish(const Extrinsic& extrinsic,
                                                                const std::string& lidar_frame,
                                                                const std::string& camera_frame,

@@ -9,6 +9,8 @@
 #include "thermal_lidar_calibration/core/dataset_builder.hpp"
 #include "thermal_lidar_calibration/ros/calibrated_tf_publisher.hpp"
 #include "thermal_lidar_calibration/app/calibration_worker.hpp"
+#include "thermal_lidar_calibration/app/drift_update_file.hpp"
+#include "thermal_lidar_calibration/app/drift_watch_worker.hpp"
 #include "thermal_lidar_calibration/ros/dataset_bag.hpp"
 #include "thermal_lidar_calibration/app/bad_frame_reporter.hpp"
 #include "thermal_lidar_calibration/app/fault_throttle.hpp"
@@ -49,6 +51,7 @@ std::string frameIdConflictText(const FrameIdConflict& conflict, std::size_t pai
 //   calibration_node_result.cpp    the optimization run and its result (tf, file, overlay)
 //   calibration_node_services.cpp  ~calibrate, ~reset, ~save
 //   calibration_node_status.cpp    state, ~status and the progress log
+//   calibration_node_monitor.cpp   the drift watch (~mode: monitor), ~accept_update
 class CalibrationNode {
  public:
   // Reads the parameters of `private_nh` (throws std::invalid_argument on a bad one), reloads
@@ -103,6 +106,16 @@ class CalibrationNode {
   bool onReset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   bool onSave(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
 
+  // calibration_node_monitor.cpp
+  void startMonitoring(const Extrinsic& reference, const std::string& origin);
+  bool ensureMonitoring(const std::string& camera_frame, const std::string& lidar_frame);
+  void monitorKeptPairs();
+  void updateDrift();  // timer: state changes, ~auto_update
+  std::string acceptDriftUpdate(const std::string& by);  // what happened, "refused: ..." if not
+  bool onAcceptUpdate(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  void fillDriftStatus(CalibrationStatus& msg) const;
+  void diagnoseDrift(NodeDiagnostics::Status& status) const;
+
   // calibration_node_status.cpp
   void setState(std::uint8_t state, const std::string& message);  // CalibrationStatus::*
   void logProgress(bool force);
@@ -132,10 +145,15 @@ class CalibrationNode {
   std::unique_ptr<OverlayPublisher> overlay_;
   std::unique_ptr<CalibratedTfPublisher> tf_publisher_;
   ros::Publisher status_pub_;
-  ros::ServiceServer calibrate_srv_, reset_srv_, save_srv_;
+  ros::ServiceServer calibrate_srv_, reset_srv_, save_srv_, accept_update_srv_;
   ros::WallTimer timer_;
 
   CalibrationWorker worker_;
+  std::unique_ptr<DriftWatchWorker> drift_;  // while monitoring
+  std::string drift_reference_;              // where the watched extrinsic came from, in words
+  DriftState last_drift_state_ = DriftState::kOk;
+  std::string drift_error_;
+  std::vector<DriftUpdateEntry> drift_history_;  // accepted updates, oldest first
   bool discard_outcome_ = false;  // set by ~reset while a run is stopping
   std::uint8_t state_ = CalibrationStatus::COLLECTING;
   std::string state_message_;

@@ -12,8 +12,14 @@
 namespace thermal_lidar_calibration {
 namespace ros_io {
 
+// ~mode: collect pairs and optimize, or watch the extrinsic in use for drift (issue 9).
+enum class NodeMode { kCalibrate, kMonitor };
+
 struct NodeParameters {
   CoreParameters core;
+  NodeMode mode = NodeMode::kCalibrate;
+  bool monitor_after_calibration = false;  // after a calibration, watch its result for drift
+  bool auto_update = false;          // publish and write a confirmed new extrinsic unasked
   std::string output_file = "thermal_lidar_calibration.yaml";  // relative to ROS_HOME
   std::string dataset_bag = "thermal_lidar_dataset.bag";       // "" = do not record pairs
   bool resume = false;               // reload dataset_bag at start and continue it

@@ -49,6 +49,12 @@ class CalibratedTfPublisher {
   geometry_msgs::TransformStamped publish(const Extrinsic& extrinsic, const std::string& lidar_frame,
                                           const std::string& camera_frame, Decision* decision);
 
+  // The extrinsic the tf tree holds now between the two frames (p_C = R p_L + t), for the drift
+  // watch's reference; nullopt with the reason in `error` when they are not connected.
+  std::optional<Extrinsic> lookupExtrinsic(const std::string& lidar_frame,
+                                           const std::string& camera_frame,
+                                           std::string* error) const;
+
   // After publishing under the camera frame itself: another node has since given it a parent.
   // The conflict in words (both parents, who published the other), or nullopt.
   std::optional<std::string> conflictAfterPublishing() const;

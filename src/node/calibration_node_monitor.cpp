@@ -1,0 +1,222 @@
+// calibration_node: the drift watch (~mode: monitor, or ~monitor_after_calibration). Kept pairs go
+// through the same ingest path as for a calibration, then to a DriftWatchWorker; the timer reads
+// its snapshot, logs changes of state, and accepts a confirmed new extrinsic with ~auto_update
+// (or on ~accept_update): published on /tf_static by the same publisher (never a second
+// parent) and written to ~output_file with its history.
+
+#include "thermal_lidar_calibration/node/calibration_node.hpp"
+
+#include "thermal_lidar_calibration/app/static_transform_command.hpp"
+#include "thermal_lidar_calibration/ros/msg_conversion.hpp"
+
+#include <diagnostic_msgs/DiagnosticStatus.h>
+
+#include <cstdio>
+
+namespace thermal_lidar_calibration {
+namespace ros_io {
+namespace {
+
+std::string changeText(const DriftChange& c) {
+  char text[160];
+  std::snprintf(text, sizeof(text),
+                "%.3f deg (about camera x, y, z: %.3f, %.3f, %.3f), translation [%.2f, %.2f, %.2f] cm",
+                c.angle_deg, c.rotation_deg.x(), c.rotation_deg.y(), c.rotation_deg.z(),
+                c.translation_cm.x(), c.translation_cm.y(), c.translation_cm.z());
+  return text;
+}
+
+}  // namespace
+
+void CalibrationNode::startMonitoring(const Extrinsic& reference, const std::string& origin) {
+  drift_ = std::make_unique<DriftWatchWorker>(builder_->camera(), reference, params_.core.drift,
+                                              params_.core.calibration);
+  drift_reference_ = origin;
+  last_drift_state_ = DriftState::kOk;
+  if (builder_->frameIdsLocked()) builder_->takePairs();  // the calibration's pairs are done
+  ROS_INFO("drift watch: watching the extrinsic from %s (tests of the latest %d kept pairs every "
+           "%d; ~auto_update %s)",
+           origin.c_str(), params_.core.drift.window_pairs, params_.core.drift.period_pairs,
+           params_.auto_update ? "on" : "off: a confirmed change waits for ~accept_update");
+  setState(CalibrationStatus::MONITORING, "monitoring the extrinsic from " + origin);
+}
+
+// ~mode: monitor without a running watch: its reference is ~reference_file, else the tf tree's
+// transform between the frames of this frame. False (and a throttled warning) while there is none.
+bool CalibrationNode::ensureMonitoring(const std::string& camera_frame,
+                                       const std::string& lidar_frame) {
+  if (drift_) return true;
+  if (reference_) {
+    startMonitoring(*reference_, "~reference_file " + params_.reference_file);
+    return true;
+  }
+  std::string error;
+  if (const auto live = tf_publisher_->lookupExtrinsic(lidar_frame, camera_frame, &error)) {
+    startMonitoring(*live, "live tf '" + lidar_frame + "' -> '" + camera_frame + "'");
+    return true;
+  }
+  const std::string text = "drift watch: no reference yet: ~reference_file is not set and the tf "
+                           "tree has no transform from '" + lidar_frame + "' to '" + camera_frame +
+                           "' (" + error + "); publish the robot's tf or set ~reference_file";
+  if (const auto held_back = fault_throttle_.admit("drift watch without reference")) {
+    ROS_WARN("%s%s", text.c_str(), fault_throttle_.heldBackText(*held_back).c_str());
+  }
+  if (state_message_ != text) setState(CalibrationStatus::MONITORING, text);
+  return false;
+}
+
+// A kept pair in monitor state: to the watch once the frame ids are settled (3 agreeing pairs),
+// never into the dataset bag (a watch runs for hours).
+void CalibrationNode::monitorKeptPairs() {
+  if (!drift_ || !builder_->frameIdsLocked()) return;
+  camera_frame_ = builder_->cameraFrame();
+  lidar_frame_ = builder_->lidarFrame();
+  for (CalibrationPair& pair : builder_->takePairs()) drift_->submit(std::move(pair));
+}
+
+void CalibrationNode::updateDrift() {
+  if (!drift_) return;
+  const DriftWatchWorker::Snapshot s = drift_->snapshot();
+  if (!s.error.empty() && s.error != drift_error_) {
+    drift_error_ = s.error;
+    ROS_ERROR("drift watch: a test failed: %s", s.error.c_str());
+  }
+  if (s.state != last_drift_state_) {
+    const DriftChange change = s.candidate ? s.candidate->change
+                               : s.last    ? s.last->test.change
+                                           : DriftChange{};
+    const double loss_ref = s.last ? s.last->test.loss_reference : 0.0;
+    const double loss_fit = s.last ? s.last->test.loss_fit : 0.0;
+    const char* what = s.state == DriftState::kError ? "confirmed: the extrinsic no longer fits"
+                       : s.state == DriftState::kWarn ? "a change is suspected"
+                                                      : "the extrinsic fits again";
+    const std::string line = std::string("drift watch ") + toString(s.state) + ": " + what +
+                             "; change " + changeText(change) + "; loss of the reference " +
+                             std::to_string(loss_ref) + " px vs the new fit " +
+                             std::to_string(loss_fit) + " px";
+    if (s.state == DriftState::kError) {
+      ROS_ERROR("%s%s", line.c_str(),
+                params_.auto_update ? "" : "; call ~accept_update to publish the new extrinsic");
+    } else if (s.state == DriftState::kWarn) {
+      ROS_WARN("%s", line.c_str());
+    } else {
+      ROS_INFO("%s", line.c_str());
+    }
+    last_drift_state_ = s.state;
+    state_message_ = line;
+    publishStatus();  // before an auto-update below turns it back to OK: ~status shows the ERROR
+    diagnostics_->publishNow();
+  }
+  if (s.update_ready && params_.auto_update) {
+    const std::string outcome = acceptDriftUpdate("auto_update");
+    ROS_INFO("drift watch: %s", outcome.c_str());
+  }
+}
+
+std::string CalibrationNode::acceptDriftUpdate(const std::string& by) {
+  if (!drift_) return "refused: the drift watch is not running";
+  const auto update = drift_->accept();
+  if (!update) {
+    return "refused: no confirmed change to accept (drift state " +
+           std::string(toString(drift_->snapshot().state)) + ")";
+  }
+  drift_history_.push_back({*update, by, ros::WallTime::now().toSec()});
+  last_drift_state_ = DriftState::kOk;  // the watch starts over from the new extrinsic
+  const Extrinsic& now = update->accepted.extrinsic;
+  drift_reference_ = "drift update " + std::to_string(drift_history_.size()) + " (" + by + ")";
+  CalibratedTfPublisher::Decision decision;
+  tf_publisher_->publish(now, lidar_frame_, camera_frame_, &decision);
+  published_child_ = decision.child_frame;
+  overlay_->setEstimate(now);
+  std::string file = "written to " + params_.output_file;
+  try {
+    writeDriftUpdateFile(params_.output_file, lidar_frame_, camera_frame_, drift_history_);
+  } catch (const std::exception& e) {
+    file = std::string("NOT written (") + e.what() + "); free the path and accept again later";
+    ROS_ERROR("drift update: result file %s", file.c_str());
+  }
+  const std::string text =
+      "new extrinsic accepted (" + by + "): change " + changeText(update->accepted.change) +
+      ", loss " + std::to_string(update->accepted.loss_reference) + " -> " +
+      std::to_string(update->accepted.loss_fit) + " px on " +
+      std::to_string(update->accepted.pairs) + " pairs" +
+      (update->accepted.complete ? "" : " (early: a final fit follows)") + "; published '" +
+      lidar_frame_ + "' -> '" + published_child_ + "'" +
+      (decision.reason.empty() ? "" : " (" + decision.reason + ")") + "; " + file +
+      "; equivalent: " + staticTransformPublisherCommand(now, lidar_frame_, published_child_);
+  setState(CalibrationStatus::MONITORING, text);
+  diagnostics_->publishNow();
+  return text;
+}
+
+bool CalibrationNode::onAcceptUpdate(std_srvs::Trigger::Request& /*req*/,
+                                     std_srvs::Trigger::Response& res) {
+  res.message = acceptDriftUpdate("accept_update");
+  res.success = res.message.rfind("refused", 0) != 0;
+  ROS_INFO("~accept_update: %s", res.message.c_str());
+  return true;
+}
+
+void CalibrationNode::fillDriftStatus(CalibrationStatus& msg) const {
+  if (!drift_) return;
+  const DriftWatchWorker::Snapshot s = drift_->snapshot();
+  msg.drift_state = toString(s.state);
+  msg.drift_reference = drift_reference_;
+  msg.drift_pairs_seen = static_cast<std::uint32_t>(s.pairs_seen);
+  msg.drift_pairs_in_window = static_cast<std::uint32_t>(s.pairs_in_window);
+  msg.drift_tests = static_cast<std::uint32_t>(s.tests);
+  const DriftChange change = s.candidate ? s.candidate->change
+                             : s.last    ? s.last->test.change
+                                         : DriftChange{};
+  msg.drift_rotation_change_deg = change.angle_deg;
+  for (int i = 0; i < 3; ++i) {
+    msg.drift_rotation_change_axes_deg[i] = change.rotation_deg[i];
+    msg.drift_translation_change_cm[i] = change.translation_cm[i];
+  }
+  msg.drift_loss_reference = s.candidate ? s.candidate->loss_reference
+                             : s.last    ? s.last->test.loss_reference
+                                         : 0.0;
+  msg.drift_loss_fit = s.candidate ? s.candidate->loss_fit : s.last ? s.last->test.loss_fit : 0.0;
+  msg.drift_update_available = s.candidate.has_value() && s.state == DriftState::kError;
+  msg.drift_updates = static_cast<std::uint32_t>(drift_history_.size());
+  for (int i = 0; i < 3; ++i) {
+    msg.rotation_vector[i] = s.reference.rotation_vector[i];
+    msg.translation[i] = s.reference.translation[i];
+  }
+}
+
+void CalibrationNode::diagnoseDrift(NodeDiagnostics::Status& status) const {
+  using diagnostic_msgs::DiagnosticStatus;
+  if (!drift_) {
+    status.summary(DiagnosticStatus::OK, params_.mode == NodeMode::kMonitor
+                                             ? "waiting for a reference and intrinsics"
+                                             : "not monitoring (~mode: calibrate)");
+    return;
+  }
+  CalibrationStatus msg;
+  fillDriftStatus(msg);
+  const DriftWatchWorker::Snapshot s = drift_->snapshot();
+  const std::uint8_t level = s.state == DriftState::kError  ? DiagnosticStatus::ERROR
+                             : s.state == DriftState::kWarn ? DiagnosticStatus::WARN
+                                                            : DiagnosticStatus::OK;
+  DriftChange change;
+  change.angle_deg = msg.drift_rotation_change_deg;
+  for (int i = 0; i < 3; ++i) {
+    change.rotation_deg[i] = msg.drift_rotation_change_axes_deg[i];
+    change.translation_cm[i] = msg.drift_translation_change_cm[i];
+  }
+  status.summary(level, std::string(toString(s.state)) + ": change " + changeText(change));
+  status.add("reference", drift_reference_);
+  status.addf("loss of the reference (px)", "%.4f", msg.drift_loss_reference);
+  status.addf("loss of the new fit (px)", "%.4f", msg.drift_loss_fit);
+  status.add("pairs seen", s.pairs_seen);
+  status.add("pairs in window", s.pairs_in_window);
+  status.add("tests", s.tests);
+  status.add("update available", msg.drift_update_available ? "yes: ~accept_update" : "no");
+  status.add("updates accepted", drift_history_.size());
+  status.addf("watch CPU time (s)", "%.2f", s.seconds);
+  if (s.dropped > 0) status.add("pairs dropped (watch behind)", s.dropped);
+}
+
+}  // namespace ros_io
+}  // namespace thermal_lidar_calibration

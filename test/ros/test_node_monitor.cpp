@@ -1,0 +1,156 @@
+// rostests of calibration_node's drift watch (~mode: monitor, issue 9), run by node_monitor.test
+// (a bag with a bump mid-drive, ~auto_update on) and node_monitor_stable.test (a stable drive).
+//
+// NodeMonitor.ConfirmsTheBumpAndPublishesTheNewExtrinsic: ~status says OK before the change and
+//   ERROR after it; with ~auto_update the node's /tf_static transform ends near the new truth,
+//   and the result file holds it with its history.
+// NodeMonitor.AStableDriveStaysOk: no WARN or ERROR at any time, nothing published.
+
+#include "thermal_lidar_calibration/app/result_file.hpp"
+#include "thermal_lidar_calibration/core/extrinsic.hpp"
+
+#include "../support/node_observer.hpp"
+
+#include <Eigen/Geometry>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+using namespace node_observer;
+using thermal_lidar_calibration::Extrinsic;
+
+namespace {
+
+// (data time, drift state) of every ~status message, in order.
+struct Timeline {
+  std::mutex mutex;
+  std::vector<std::pair<double, std::string>> states;
+};
+Timeline g_timeline;
+
+void onStatusTimeline(const CalibrationStatus::ConstPtr& msg) {
+  std::lock_guard<std::mutex> lock(g_timeline.mutex);
+  g_timeline.states.emplace_back(msg->header.stamp.toSec(), msg->drift_state);
+}
+
+// The player is done: no new input image for `quiet_s` of wall time (after at least one).
+bool waitForPlayerDone(double timeout_s, double quiet_s) {
+  int last = -1;
+  ros::WallTime last_change = ros::WallTime::now();
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
+  while (ros::ok() && ros::WallTime::now() < end) {
+    const int now = g_observed.input_images;
+    if (now != last) {
+      last = now;
+      last_change = ros::WallTime::now();
+    } else if (now > 0 && (ros::WallTime::now() - last_change).toSec() > quiet_s) {
+      return true;
+    }
+    ros::WallDuration(0.1).sleep();
+  }
+  return false;
+}
+
+Extrinsic nodePublished(const std::string& child) {
+  geometry_msgs::TransformStamped published;
+  for (auto r = g_observed.tf_static.equal_range(child); r.first != r.second; ++r.first) {
+    if (r.first->second.first.find("calibration_node") != std::string::npos) {
+      published = r.first->second.second;
+    }
+  }
+  const auto& q = published.transform.rotation;
+  const auto& t = published.transform.translation;
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();  // T_lidar_camera: the camera in the LiDAR
+  T.linear() = Eigen::Quaterniond(q.w, q.x, q.y, q.z).normalized().toRotationMatrix();
+  T.translation() = Eigen::Vector3d(t.x, t.y, t.z);
+  const Eigen::Isometry3d T_camera_lidar = T.inverse();
+  return Extrinsic::fromRotationMatrix(T_camera_lidar.linear(), T_camera_lidar.translation());
+}
+
+Extrinsic extrinsicOf(const YAML::Node& node) {
+  Extrinsic e;
+  for (int i = 0; i < 3; ++i) {
+    e.rotation_vector[i] = node["rotation_vector"][i].as<double>();
+    e.translation[i] = node["translation"][i].as<double>();
+  }
+  return e;
+}
+
+}  // namespace
+
+TEST(NodeMonitor, ConfirmsTheBumpAndPublishesTheNewExtrinsic) {
+  ros::NodeHandle pnh("~");
+  const std::string truth_file = pnh.param<std::string>("truth_file", "");
+  const std::string result_file = pnh.param<std::string>("result_file", "");
+  const std::string child = pnh.param<std::string>("expected_child", "thermal_optical");
+  const double rot_tol_deg = pnh.param("rotation_tolerance_deg", 0.15);
+  const double trans_tol_m = pnh.param("translation_tolerance_m", 0.02);
+  ros::NodeHandle nh;
+  const ros::Subscriber sub = nh.subscribe("calibration_node/status", 1000, onStatusTimeline);
+  ASSERT_TRUE(waitForPlayerDone(pnh.param("timeout_s", 240.0), 6.0)) << "the bag did not play";
+
+  const YAML::Node truth = YAML::LoadFile(truth_file);
+  const double change_at = truth["extrinsic_change"]["at_stamp"].as<double>();
+  const Extrinsic after = extrinsicOf(truth["extrinsic_change"]["after"]);
+  double first_error = 0.0;
+  int ok_before = 0;
+  {
+    std::lock_guard<std::mutex> lock(g_timeline.mutex);
+    for (const auto& [stamp, state] : g_timeline.states) {
+      if (stamp < change_at) {
+        EXPECT_TRUE(state == "OK" || state.empty()) << state << " at " << stamp << ", before the change";
+        ok_before += state == "OK" ? 1 : 0;
+      } else if (state == "ERROR" && first_error == 0.0) {
+        first_error = stamp;
+      }
+    }
+  }
+  EXPECT_GT(ok_before, 0) << "the watch never reported before the change";
+  ASSERT_GT(first_error, 0.0) << "no ERROR after the change";
+  std::cout << "[ node ] drift confirmed " << first_error - change_at << " s after the change\n";
+
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  EXPECT_EQ(g_observed.last_status.state_name, "monitoring");
+  EXPECT_GE(g_observed.last_status.drift_updates, 1u);
+  const Extrinsic published = nodePublished(child);
+  const double rot_err_deg = thermal_lidar_calibration::rotationErrorRad(published, after) * 180.0 / M_PI;
+  const double trans_err_m = thermal_lidar_calibration::translationErrorM(published, after);
+  std::cout << "[ node ] new extrinsic on /tf_static: " << rot_err_deg << " deg, " << trans_err_m * 100
+            << " cm from the new truth\n";
+  EXPECT_LT(rot_err_deg, rot_tol_deg);
+  EXPECT_LT(trans_err_m, trans_tol_m);
+  // The result file holds what was published, with the history of updates.
+  const YAML::Node result = YAML::LoadFile(result_file);
+  ASSERT_TRUE(result["drift_updates"]) << result_file;
+  EXPECT_EQ(result["drift_updates"].size(), g_observed.last_status.drift_updates);
+  EXPECT_EQ(result["drift_updates"][0]["accepted_by"].as<std::string>(), "auto_update");
+  const Extrinsic from_file = thermal_lidar_calibration::readExtrinsicFile(result_file);
+  EXPECT_LT(thermal_lidar_calibration::rotationErrorRad(from_file, published), 1e-6);
+  EXPECT_LT(thermal_lidar_calibration::translationErrorM(from_file, published), 1e-6);
+  const Extrinsic old_in_file = extrinsicOf(result["drift_updates"][0]["old"]);
+  EXPECT_LT(thermal_lidar_calibration::rotationErrorRad(old_in_file, thermal_lidar_calibration::readExtrinsicFile(truth_file)), 1e-6);
+}
+
+TEST(NodeMonitor, AStableDriveStaysOk) {
+  ros::NodeHandle pnh("~");
+  ros::NodeHandle nh;
+  const ros::Subscriber sub = nh.subscribe("calibration_node/status", 1000, onStatusTimeline);
+  ASSERT_TRUE(waitForPlayerDone(pnh.param("timeout_s", 240.0), 6.0)) << "the bag did not play";
+  {
+    std::lock_guard<std::mutex> lock(g_timeline.mutex);
+    for (const auto& [stamp, state] : g_timeline.states) {
+      EXPECT_TRUE(state == "OK" || state.empty()) << state << " at " << stamp << " on a stable drive";
+    }
+  }
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  EXPECT_GE(g_observed.last_status.drift_tests, pnh.param("min_tests", 10)) << g_observed.last_status;
+  EXPECT_EQ(g_observed.last_status.drift_updates, 0u);
+  EXPECT_TRUE(g_observed.node_tf_static_children.empty()) << "published on a stable drive";
+  const auto diagnostics = g_observed.diagnostics.find("calibration_node: drift");
+  ASSERT_NE(diagnostics, g_observed.diagnostics.end()) << "no drift status on /diagnostics";
+  EXPECT_EQ(diagnostics->second.level, diagnostic_msgs::DiagnosticStatus::OK) << diagnostics->second.message;
+}
+
+int main(int argc, char** argv) { return runNodeTests(argc, argv, "node_monitor_test"); }
