@@ -3,6 +3,7 @@
 
 #include "thermal_lidar_calibration/node/calibration_node.hpp"
 
+#include "thermal_lidar_calibration/app/calibration_report.hpp"
 #include "thermal_lidar_calibration/app/result_file.hpp"
 #include "thermal_lidar_calibration/app/static_transform_command.hpp"
 
@@ -61,6 +62,7 @@ void CalibrationNode::handleOutcome(CalibrationWorker::Outcome outcome) {
              quality_->verdict.reasons.empty() ? "" : quality_->verdict.reasons.front().c_str());
   }
   const std::string write_error = writeResult();
+  writeReport();
   overlay_->setEstimate(result_->extrinsic);
   result_published_ = false;
   if (tfCheckWaitOver()) publishResult();
@@ -126,6 +128,25 @@ void CalibrationNode::publishResult() {
            R(1, 1), R(1, 2), R(2, 0), R(2, 1), R(2, 2), t.x(), t.y(), t.z(), result_->loss,
            result_->pairs_used, result_->pairs_collected, result_->seconds,
            staticTransformPublisherCommand(result_->extrinsic, lidar_frame_, published_child_).c_str());
+}
+
+void CalibrationNode::writeReport() {
+  if (params_.report_dir.empty()) return;
+  ReportInput report;
+  report.camera = &builder_->camera();
+  report.pairs = &builder_->pairs();  // the pairs of the run: none are kept while optimizing
+  report.result = &*result_;
+  report.quality = quality_ ? &*quality_ : nullptr;
+  report.threshold_px = params_.core.calibration.outlier.threshold_px;
+  report.source = "calibration_node " + ros::this_node::getName();
+  report.lidar_frame = lidar_frame_;
+  report.camera_frame = camera_frame_;
+  try {
+    writeCalibrationReport(params_.report_dir, report);
+    ROS_INFO("report written: %s/index.html", params_.report_dir.c_str());
+  } catch (const std::exception& e) {
+    ROS_ERROR("report not written: %s", e.what());
+  }
 }
 
 std::string CalibrationNode::writeResult() {

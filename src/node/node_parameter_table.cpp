@@ -39,6 +39,9 @@ ParameterTable<NodeParameters> makeNodeParameterTable() {
             TextRule::optional("no reference"),
             "result YAML of the calibration in use: the result reports its difference per axis and its loss "
             "on the same pairs");
+  node.text("report_dir", &NodeParameters::report_dir, TextRule::optional("no report"),
+            "directory for the visual report written after each calibration (overlays, coverage, "
+            "convergence, loss per pair, uncertainty, index.html)");
   node.text("child_frame", &NodeParameters::child_frame,
             TextRule::optional("<camera_frame>_calibrated"),
             "frame published when the camera frame already has a parent");

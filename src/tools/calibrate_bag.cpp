@@ -7,6 +7,7 @@
 #include "thermal_lidar_calibration/ros/bag_ingest.hpp"
 #include "thermal_lidar_calibration/app/writable_path.hpp"
 #include "thermal_lidar_calibration/app/calibration_summary.hpp"
+#include "thermal_lidar_calibration/app/calibration_report.hpp"
 #include "thermal_lidar_calibration/app/drift_timeline.hpp"
 #include "thermal_lidar_calibration/app/camera_info_file.hpp"
 #include "thermal_lidar_calibration/app/progress_line.hpp"
@@ -312,6 +313,19 @@ int runCalibrateBag(const CalibrateBagOptions& options) {
     context.truth = cmp;
   }
   writeResultFile(options.output, result, context);
+  if (!options.report.empty()) {
+    ReportInput report;
+    report.camera = &camera;
+    report.pairs = &builder.pairs();
+    report.result = &result;
+    report.quality = quality ? &*quality : nullptr;
+    report.threshold_px = params.calibration.outlier.threshold_px;
+    report.source = "calibrate_bag " + options.bag;
+    report.lidar_frame = context.lidar_frame;
+    report.camera_frame = context.camera_frame;
+    const std::vector<std::string> files = writeCalibrationReport(options.report, report);
+    if (!options.quiet) std::printf("report: %s/index.html (%zu files)\n", options.report.c_str(), files.size());
+  }
 
   SummaryInput summary;
   summary.bag_path = options.bag;

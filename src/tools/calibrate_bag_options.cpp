@@ -53,6 +53,9 @@ std::string calibrateBagUsage() {
       "  --truth TRUTH.yaml       known extrinsic: print rotation/translation errors and its loss\n"
       "  --reference FILE.yaml    the calibration you already have (a result YAML): its difference\n"
       "                           per axis and its loss on the same pairs, beside ours\n"
+      "  --report DIR             write a visual report into DIR: overlays of the best and worst\n"
+      "                           pairs, coverage, convergence, loss per pair, uncertainty, and an\n"
+      "                           index.html with the numbers\n"
       "  --monitor                drift watch instead of a calibration: the kept pairs in time order\n"
       "                           against --reference; writes OUT.yaml (latest fit + drift state),\n"
       "                           OUT.drift.csv and OUT.drift.png (monitor_* keys in --config)\n"
@@ -131,12 +134,17 @@ CalibrateBagOptions parseCalibrateBagOptions(int argc, const char* const* argv) 
       o.truth = value();
     } else if (flag == "--reference") {
       o.reference = value();
+    } else if (flag == "--report") {
+      o.report = value();
     } else {
       throw UsageError("unknown argument '" + args[i] + "'");
     }
   }
   if (o.bag.empty()) throw UsageError("--bag IN.bag is required");
   if (o.output.empty()) throw UsageError("--output OUT.yaml is required");
+  if (o.monitor && !o.report.empty()) {
+    throw UsageError("--report is for a calibration; --monitor writes OUT.drift.png instead");
+  }
   if (o.monitor && o.reference.empty()) {
     throw UsageError("--monitor needs --reference RESULT.yaml: the extrinsic in use, to watch for drift");
   }

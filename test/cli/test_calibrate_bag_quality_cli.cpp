@@ -1,14 +1,17 @@
 // calibrate_bag's answer to "can I trust it?" (issue 8): the result file's uncertainty,
-// coverage, verdict and reference keys, the verdict on a drive with an empty image region, and
-// --reference against the truth.
+// coverage, verdict and reference keys, the verdict on a drive with an empty image region,
+// --reference against the truth, and the visual report (--report).
 
 #include "cli_run.hpp"
 #include "../support/test_files.hpp"
 
 #include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <yaml-cpp/yaml.h>
 
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #ifndef CALIBRATE_BAG_EXE
@@ -107,3 +110,45 @@ TEST_F(CalibrateBagQualityCli, UnreadableReferenceIsOneLine) {
 }
 
 }  // namespace
+
+// --report DIR: the pictures exist with their stated sizes, are not blank, and index.html shows
+// them with the numbers.
+TEST_F(CalibrateBagQualityCli, ReportWritesThePicturesAndAnIndex) {
+  const std::string report = dir_ + "/report";
+  const RunResult r = calibrate("full", "--report '" + report + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("report: " + report + "/index.html (6 files)"), std::string::npos) << r.out;
+  const struct {
+    const char* file;
+    int width, height;
+  } pictures[] = {{"overlays.png", 960, 512},    {"coverage.png", 640, 512},
+                  {"convergence.png", 900, 420}, {"pair_losses.png", 900, 360},
+                  {"uncertainty.png", 900, 360}};
+  std::ifstream index_file(report + "/index.html");
+  const std::string index((std::istreambuf_iterator<char>(index_file)), std::istreambuf_iterator<char>());
+  for (const auto& p : pictures) {
+    const cv::Mat image = cv::imread(report + "/" + p.file);
+    ASSERT_FALSE(image.empty()) << p.file;
+    EXPECT_EQ(image.cols, p.width) << p.file;
+    EXPECT_EQ(image.rows, p.height) << p.file;
+    cv::Scalar mean, stddev;
+    cv::meanStdDev(image, mean, stddev);
+    EXPECT_GT(stddev[0] + stddev[1] + stddev[2], 10.0) << p.file << " is blank";
+    EXPECT_NE(index.find(std::string("<img src=\"") + p.file + "\">"), std::string::npos) << p.file;
+  }
+  const YAML::Node y = YAML::LoadFile(dir_ + "/full.yaml");
+  EXPECT_NE(index.find(y["verdict"].as<std::string>()), std::string::npos) << index;
+  EXPECT_NE(index.find("loss (Eq. 3, nearest pixel)"), std::string::npos);
+  // The overlays show the result: on a clean drive the best pairs' points lie on the masks,
+  // so the top row has green (BGR ~ (60, 170, 60)) and no red points.
+  const cv::Mat overlays = cv::imread(report + "/overlays.png");
+  const cv::Mat top = overlays(cv::Rect(0, 0, overlays.cols, overlays.rows / 2));
+  cv::Mat green, red;
+  cv::inRange(top, cv::Scalar(50, 160, 50), cv::Scalar(70, 180, 70), green);
+  cv::inRange(top, cv::Scalar(30, 30, 210), cv::Scalar(50, 50, 230), red);
+  EXPECT_GT(cv::countNonZero(green), 20);
+  EXPECT_EQ(cv::countNonZero(red), 0);
+  // The report belongs to a calibration: with --monitor it is a usage error.
+  const RunResult usage = calibrate("full", "--monitor --reference x.yaml --report '" + report + "'");
+  EXPECT_EQ(usage.exit_code, 2) << usage.err;
+}

@@ -30,6 +30,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -117,6 +118,14 @@ TEST(NodeBag, ReachesDonePublishesTruthAndWritesYaml) {
   ASSERT_TRUE(yaml["uncertainty"]) << "no uncertainty in " << result_file;
   EXPECT_EQ(yaml["uncertainty"]["rotation_deg"].size(), 3u);
   EXPECT_GT(yaml["uncertainty"]["translation_cm"][2].as<double>(), 0.0);
+  // The visual report (~report_dir).
+  const std::string report_index = pnh.param<std::string>("report_index", "");
+  if (!report_index.empty()) {
+    std::ifstream index(report_index);
+    const std::string html((std::istreambuf_iterator<char>(index)), std::istreambuf_iterator<char>());
+    EXPECT_NE(html.find("<img src=\"overlays.png\">"), std::string::npos) << report_index;
+    EXPECT_NE(html.find("calibration_node"), std::string::npos) << report_index;
+  }
   ASSERT_TRUE(yaml["verdict"]);
   EXPECT_GE(yaml["verdict_reasons"].size(), 1u);
   EXPECT_TRUE(yaml["coverage"]);

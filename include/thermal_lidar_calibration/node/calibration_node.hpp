@@ -92,6 +92,7 @@ class CalibrationNode {
   void publishResult();
   // Writes ~output_file and reads it back; "" when the file holds the result, else why not.
   std::string writeResult();
+  void writeReport();  // ~report_dir, after a calibration (a failure is logged, not fatal)
   // The tf check's wait is over: ~tf_check_wait_s of wall time since start AND of the data's
   // own time (ros::Time, sim time on a replay) since the first input message, so a resumed node
   // does not publish before a replayed bag's /tf_static has had its chance.

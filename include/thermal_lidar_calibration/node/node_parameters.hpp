@@ -25,6 +25,7 @@ struct NodeParameters {
   bool resume = false;               // reload dataset_bag at start and continue it
   std::string camera_info_file;      // camera_calibration YAML; "" = use thermal/camera_info
   std::string reference_file;        // result YAML of the calibration in use; "" = none
+  std::string report_dir;            // visual report after each calibration; "" = none
   std::string child_frame;           // used when the camera frame already has a parent;
                                      // "" = "<camera_frame>_calibrated"
   int min_pairs_to_calibrate = 20;   // ~calibrate is refused below this, [1, pairs_required]

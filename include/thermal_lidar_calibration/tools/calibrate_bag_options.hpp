@@ -27,6 +27,7 @@ struct CalibrateBagOptions {
   std::optional<int> threads;
   std::string truth;             // --truth TRUTH.yaml: report errors against it
   std::string reference;         // --reference RESULT.yaml: the calibration the user already has
+  std::string report;            // --report DIR: the visual report (pictures and index.html)
   bool quiet = false;
   bool help = false;
 };
