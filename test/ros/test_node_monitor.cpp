@@ -4,7 +4,8 @@
 // NodeMonitor.ConfirmsTheBumpAndPublishesTheNewExtrinsic: ~status says OK before the change and
 //   ERROR after it; with ~auto_update the node's /tf_static transform ends near the new truth,
 //   and the result file holds it with its history.
-// NodeMonitor.AStableDriveStaysOk: no WARN or ERROR at any time, nothing published.
+// NodeMonitor.AStableDriveStaysOk: no WARN or ERROR at any time, nothing published; the extrinsic
+//   watched is the one the tf tree holds.
 
 #include "thermal_lidar_calibration/app/result_file.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
@@ -12,6 +13,7 @@
 #include "../support/node_observer.hpp"
 
 #include <Eigen/Geometry>
+#include <tf2_ros/static_transform_broadcaster.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -136,6 +138,21 @@ TEST(NodeMonitor, ConfirmsTheBumpAndPublishesTheNewExtrinsic) {
 TEST(NodeMonitor, AStableDriveStaysOk) {
   ros::NodeHandle pnh("~");
   ros::NodeHandle nh;
+  // The robot's tf: the extrinsic in use, velodyne -> thermal_optical.
+  std::vector<double> v;
+  ASSERT_TRUE(pnh.getParam("robot_tf", v) && v.size() == 7) << "~robot_tf: x y z qx qy qz qw";
+  tf2_ros::StaticTransformBroadcaster robot_tf;
+  geometry_msgs::TransformStamped t;
+  t.header.frame_id = "velodyne";
+  t.child_frame_id = "thermal_optical";
+  t.transform.translation.x = v[0];
+  t.transform.translation.y = v[1];
+  t.transform.translation.z = v[2];
+  t.transform.rotation.x = v[3];
+  t.transform.rotation.y = v[4];
+  t.transform.rotation.z = v[5];
+  t.transform.rotation.w = v[6];
+  robot_tf.sendTransform(t);
   const ros::Subscriber sub = nh.subscribe("calibration_node/status", 1000, onStatusTimeline);
   ASSERT_TRUE(waitForPlayerDone(pnh.param("timeout_s", 240.0), 6.0)) << "the bag did not play";
   {
@@ -147,6 +164,7 @@ TEST(NodeMonitor, AStableDriveStaysOk) {
   std::lock_guard<std::mutex> lock(g_observed.mutex);
   EXPECT_GE(g_observed.last_status.drift_tests, pnh.param("min_tests", 10)) << g_observed.last_status;
   EXPECT_EQ(g_observed.last_status.drift_updates, 0u);
+  EXPECT_EQ(g_observed.last_status.drift_reference, pnh.param<std::string>("expected_reference", ""));
   EXPECT_TRUE(g_observed.node_tf_static_children.empty()) << "published on a stable drive";
   const auto diagnostics = g_observed.diagnostics.find("calibration_node: drift");
   ASSERT_NE(diagnostics, g_observed.diagnostics.end()) << "no drift status on /diagnostics";
