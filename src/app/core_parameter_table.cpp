@@ -85,6 +85,11 @@ void addDriftRows(ParameterTable<CoreParameters>& t) {
                 "pairs since a confirmed change the new extrinsic is fitted on before it is final");
   drift.integer("monitor_fit_max_evaluations", &DriftConfig::fit_max_evaluations, {1, 100000000}, "",
                 "loss evaluations per refinement of a drift fit");
+  drift.real("monitor_max_update_rotation_deg", &DriftConfig::max_update_rotation_deg,
+             closedRange(0, 180), "deg",
+             "a new extrinsic turned further than this from the reference is never offered (calibrate again)");
+  drift.real("monitor_max_update_translation_cm", &DriftConfig::max_update_translation_cm,
+             closedRange(0, 1e5), "cm", "nor one moved further than this");
 }
 
 ParameterTable<CoreParameters> makeCoreParameterTable() {

@@ -33,6 +33,7 @@ struct DriftWatchWorker::State {
     snapshot.pairs_seen = monitor.pairsSeen();
     snapshot.pairs_in_window = monitor.pairsInWindow();
     snapshot.seconds = monitor.secondsInTests();
+    snapshot.candidates_refused = monitor.candidatesRefused();
     snapshot.queued = queue.size();
   }
 

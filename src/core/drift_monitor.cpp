@@ -23,6 +23,11 @@ DriftMonitor::DriftMonitor(const CameraModel& camera, const Extrinsic& reference
   calibration_.validate();
 }
 
+bool DriftMonitor::withinUpdateBounds(const DriftChange& change) const {
+  return change.angle_deg <= drift_.max_update_rotation_deg &&
+         change.distance_cm <= drift_.max_update_translation_cm;
+}
+
 std::size_t DriftMonitor::pairsInWindow() const {
   return std::min(held_.size(), static_cast<std::size_t>(drift_.window_pairs));
 }
@@ -84,7 +89,9 @@ std::optional<DriftRecord> DriftMonitor::addPair(CalibrationPair pair) {
     // Place the change with the best pose for "after" there is (the candidate once there is
     // one, more pairs make it sharper), fit the pairs since then, and place it again with that
     // fit: a split placed too early hands the fit old pairs, which pull it back.
-    const Extrinsic after = candidate_ ? candidate_->extrinsic : record.test.fit;
+    const Extrinsic after = candidate_                                ? candidate_->extrinsic
+                            : withinUpdateBounds(record.test.change) ? record.test.fit
+                                                                      : reference_;
     locateChange(after);
     fitCandidate(after);
     const std::optional<std::uint64_t> placed = change_seq_;
@@ -139,6 +146,11 @@ void DriftMonitor::fitCandidate(const Extrinsic& start) {
   DriftCandidate c;
   c.extrinsic = fit.estimate;
   c.change = driftChange(fit.estimate, reference_);
+  if (!withinUpdateBounds(c.change)) {
+    candidate_.reset();  // the next test starts again from its window's fit
+    ++candidates_refused_;
+    return;
+  }
   c.loss_reference = nearest.loss(reference_, fit.used);
   c.loss_fit = nearest.loss(fit.estimate, fit.used);
   c.pairs = pairs.size();

@@ -96,7 +96,10 @@ void CalibrationNode::updateDrift() {
                              std::to_string(loss_fit) + " px";
     if (s.state == DriftState::kError) {
       ROS_ERROR("%s%s", line.c_str(),
-                params_.auto_update ? "" : "; call ~accept_update to publish the new extrinsic");
+                !s.candidate ? "; no new extrinsic yet (the fit is still settling, or the change is "
+                               "beyond monitor_max_update_*: then calibrate again)"
+                : params_.auto_update ? ""
+                                      : "; call ~accept_update to publish the new extrinsic");
     } else if (s.state == DriftState::kWarn) {
       ROS_WARN("%s", line.c_str());
     } else {
@@ -214,6 +217,13 @@ void CalibrationNode::diagnoseDrift(NodeDiagnostics::Status& status) const {
   status.add("tests", s.tests);
   status.add("update available", msg.drift_update_available ? "yes: ~accept_update" : "no");
   status.add("updates accepted", drift_history_.size());
+  if (s.candidates_refused > 0) {
+    status.add("new fits refused (beyond monitor_max_update_*)", s.candidates_refused);
+    if (s.state == DriftState::kError && !s.candidate) {
+      status.summary(level, std::string("ERROR: the extrinsic no longer fits and the change is "
+                                        "beyond what the watch refits: calibrate again"));
+    }
+  }
   status.addf("watch CPU time (s)", "%.2f", s.seconds);
   if (s.dropped > 0) status.add("pairs dropped (watch behind)", s.dropped);
 }

@@ -168,6 +168,30 @@ TEST(DriftMonitor, AcceptingAnEarlyUpdateOffersTheFinalOneLater) {
   EXPECT_FALSE(m.acceptCandidate());  // nothing left to accept
 }
 
+// A change beyond monitor_max_update_*: confirmed (ERROR), but no new extrinsic is offered, so
+// auto-update can never publish a fit that wandered off (seen on a realistic-noise drive: a
+// 0.5 deg bump refitted to 172 deg and 75 m on windows that could not pin the pose down).
+TEST(DriftMonitor, NeverOffersANewExtrinsicBeyondTheUpdateBounds) {
+  const Extrinsic before = fieldsafeTruth();
+  const Extrinsic after = bumped(before, Eigen::Vector3d(0.3, -0.8, 0.5), 0.5, Eigen::Vector3d::Zero());
+  const auto stream = concatenated(firstPairs(stablePairs(false), 45),
+                                   pairsSeenWith(after, 63, 32, false));
+  DriftConfig config;
+  config.max_update_rotation_deg = 0.3;  // the 0.5 deg bump counts as too large to refit
+  CalibrationConfig calibration;
+  calibration.num_threads = 1;
+  DriftMonitor m(fieldsafeCamera(), before, config, calibration);
+  bool ever_ready = false;
+  for (const CalibrationPair& p : stream) {
+    m.addPair(p);
+    ever_ready = ever_ready || m.updateReady() || m.candidate().has_value();
+  }
+  EXPECT_EQ(m.state(), DriftState::kError);
+  EXPECT_FALSE(ever_ready);
+  EXPECT_GT(m.candidatesRefused(), 0u);
+  EXPECT_FALSE(m.acceptCandidate());
+}
+
 TEST(DriftMonitor, SameInputSameVerdictsWhateverTheThreadCount) {
   const Extrinsic before = fieldsafeTruth();
   const Extrinsic after = bumped(before, Eigen::Vector3d(0.0, 1.0, 0.0), 0.5, Eigen::Vector3d::Zero());

@@ -34,6 +34,12 @@ struct DriftConfig {
   // about a thousand; on a window that cannot pin the pose down the search would otherwise
   // wander along flat directions for the whole calibration budget, at sensor rate.
   int fit_max_evaluations = 3000;
+  // monitor_max_update_rotation_deg / monitor_max_update_translation_cm: a new extrinsic further
+  // than this from the reference is never offered (nor taken by auto-update): the watch's fits
+  // are local, and on windows that cannot pin the pose down (seen on a realistic-noise drive)
+  // they can wander metres away. A real change that large is a remount: calibrate again.
+  double max_update_rotation_deg = 5.0;
+  double max_update_translation_cm = 25.0;
   void validate() const;   // throws std::invalid_argument naming the key and range
 };
 

@@ -82,6 +82,9 @@ class DriftMonitor {
   // keeps the pairs.
   void setReference(const Extrinsic& reference);
 
+  // Fits after a confirmed change that were too far from the reference to offer
+  // (DriftConfig::max_update_*): the change is there, but not one the watch can refit.
+  std::uint64_t candidatesRefused() const { return candidates_refused_; }
   std::uint64_t pairsSeen() const { return next_seq_; }
   std::size_t pairsInWindow() const;
   double secondsInTests() const { return seconds_; }  // all steps so far
@@ -98,6 +101,7 @@ class DriftMonitor {
   // reference (change_point.hpp).
   void locateChange(const Extrinsic& fit);
   void fitCandidate(const Extrinsic& start);
+  bool withinUpdateBounds(const DriftChange& change) const;
 
   CameraModel camera_;
   Extrinsic reference_;
@@ -113,6 +117,7 @@ class DriftMonitor {
   std::optional<DriftRecord> last_record_;
   double confirm_p_value_ = 1.0;  // of the window test that confirmed the change
   double seconds_ = 0.0;
+  std::uint64_t candidates_refused_ = 0;
 };
 
 }  // namespace thermal_lidar_calibration
