@@ -35,12 +35,15 @@ DriftTimeline watchDrift(const CameraModel& camera, const std::vector<Calibratio
 
 void writeDriftCsv(const std::string& path, const DriftTimeline& timeline) {
   std::ofstream out(path);
-  out << "stamp,pairs_in_window,state,rotation_change_deg,translation_change_cm,loss_reference,loss_fit\n";
+  // pairs_seen (kept pairs given to the watch so far) last: the INTERFACE's columns come first.
+  out << "stamp,pairs_in_window,state,rotation_change_deg,translation_change_cm,loss_reference,"
+         "loss_fit,pairs_seen\n";
   char row[256];
   for (const DriftRecord& r : timeline.records) {
-    std::snprintf(row, sizeof(row), "%.3f,%zu,%s,%.4f,%.3f,%.5f,%.5f\n", r.stamp_s,
+    std::snprintf(row, sizeof(row), "%.3f,%zu,%s,%.4f,%.3f,%.5f,%.5f,%llu\n", r.stamp_s,
                   r.test.pairs_in_window, toString(r.state), r.test.change.angle_deg,
-                  r.test.change.distance_cm, r.test.loss_reference, r.test.loss_fit);
+                  r.test.change.distance_cm, r.test.loss_reference, r.test.loss_fit,
+                  static_cast<unsigned long long>(r.pairs_seen));
     out << row;
   }
   out.close();

@@ -91,7 +91,7 @@ TEST_F(CalibrateBagMonitorCli, ABumpIsConfirmedAfterItHappensWithTheTimelineBesi
   std::ifstream csv(dir_ + "/bump.drift.csv");
   std::string header, row;
   std::getline(csv, header);
-  EXPECT_EQ(header, "stamp,pairs_in_window,state,rotation_change_deg,translation_change_cm,loss_reference,loss_fit");
+  EXPECT_EQ(header, "stamp,pairs_in_window,state,rotation_change_deg,translation_change_cm,loss_reference,loss_fit,pairs_seen");
   int rows = 0, errors = 0;
   while (std::getline(csv, row)) {
     ++rows;
