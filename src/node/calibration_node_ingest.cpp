@@ -196,9 +196,10 @@ void CalibrationNode::onFrame(const sensor_msgs::Image::ConstPtr& image,
   }
   ROS_DEBUG("kept frame %.3f (%d people): %s", image->header.stamp.toSec(), outcome.mask_people,
             progressLine().c_str());
-  if (static_cast<int>(builder_->pairs().size()) >= params_.core.pairs_required &&
-      state_ == CalibrationStatus::COLLECTING) {
-    startOptimization("~pairs_required reached");
+  if (builder_->pairs().size() >= nextFitPairs() && state_ == CalibrationStatus::COLLECTING) {
+    startOptimization(next_fit_pairs_ == 0 ? "~pairs_required reached"
+                                           : "~stop_when quality: " + std::to_string(nextFitPairs()) +
+                                                 " pairs, fitting again");
   }
 }
 

@@ -10,6 +10,10 @@
 namespace thermal_lidar_calibration {
 namespace ros_io {
 
+std::size_t CalibrationNode::nextFitPairs() const {
+  return std::max<std::size_t>(next_fit_pairs_, static_cast<std::size_t>(params_.core.pairs_required));
+}
+
 std::string CalibrationNode::startOptimization(const std::string& why) {
   if (state_ == CalibrationStatus::OPTIMIZING) return "refused: already optimizing";
   if (state_ == CalibrationStatus::MONITORING) {
@@ -66,6 +70,22 @@ void CalibrationNode::handleOutcome(CalibrationWorker::Outcome outcome) {
   overlay_->setEstimate(result_->extrinsic);
   result_published_ = false;
   if (tfCheckWaitOver()) publishResult();
+  const std::size_t n = builder_->pairs().size();
+  if (params_.stop_when == StopWhen::kQuality && quality_ &&
+      quality_->verdict.verdict != Verdict::kGood && n < static_cast<std::size_t>(params_.max_pairs)) {
+    // Not good yet: the result is out (a better one replaces it), and collecting goes on.
+    next_fit_pairs_ = std::min<std::size_t>(n + params_.quality_check_every_pairs, params_.max_pairs);
+    const std::string missing =
+        quality_->verdict.reasons.empty() ? "" : ": " + quality_->verdict.reasons.front();
+    setState(CalibrationStatus::COLLECTING,
+             std::string("verdict ") + toString(quality_->verdict.verdict) + " at " +
+                 std::to_string(n) + " pairs" + missing + "; collecting on (next fit at " +
+                 std::to_string(next_fit_pairs_) + " pairs, the last at ~max_pairs " +
+                 std::to_string(params_.max_pairs) + ")" +
+                 (write_error.empty() ? "" : "; result file NOT written (" + write_error + ")"));
+    ROS_INFO("%s", state_message_.c_str());
+    return;
+  }
   setState(CalibrationStatus::DONE,
            "done: loss " + std::to_string(result_->loss) + " px" +
                (quality_ ? std::string(", verdict ") + toString(quality_->verdict.verdict) : "") +

@@ -24,6 +24,7 @@ bool CalibrationNode::onReset(std_srvs::Trigger::Request& /*req*/, std_srvs::Tri
   if (builder_) builder_->reset();
   stored_stamps_ns_.clear();
   pairs_resumed_ = 0;
+  next_fit_pairs_ = 0;
   result_.reset();
   quality_.reset();
   result_published_ = true;

@@ -21,8 +21,13 @@ const char* stateName(std::uint8_t state) {
 std::string CalibrationNode::progressLine() const {
   std::ostringstream s;
   const std::size_t kept = builder_ ? builder_->pairs().size() : 0;
-  s << "kept " << kept << "/" << params_.core.pairs_required;
+  s << "kept " << kept << "/" << nextFitPairs();
   if (!builder_) return s.str() + " (no intrinsics yet)";
+  if (next_fit_pairs_ != 0 && quality_) {  // ~stop_when quality: what is missing
+    s << " (verdict " << toString(quality_->verdict.verdict);
+    if (!quality_->verdict.reasons.empty()) s << ": " << quality_->verdict.reasons.front();
+    s << ")";
+  }
   const RejectionCounts& c = builder_->counts();
   s << "; rejected: unequal " << c[GateDecision::kCountMismatch] << ", none "
     << c[GateDecision::kNoPeople] << ", >H_max " << c[GateDecision::kTooManyPeople]

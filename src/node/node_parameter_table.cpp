@@ -20,6 +20,16 @@ ParameterTable<NodeParameters> makeNodeParameterTable() {
               "must be calibrate or monitor",
               "calibrate: collect pairs and optimize; monitor: watch the extrinsic in use for drift "
               "(from reference_file, else the live tf between the two frames)");
+  node.choice("stop_when", &NodeParameters::stop_when,
+              {{"pairs", StopWhen::kPairs}, {"quality", StopWhen::kQuality}},
+              "must be pairs or quality",
+              "pairs: optimize once pairs_required pairs are kept; quality: optimize then, and again "
+              "every quality_check_every_pairs new pairs until the verdict is good or max_pairs are kept");
+  node.integer("quality_check_every_pairs", &NodeParameters::quality_check_every_pairs, {1, 100000}, "",
+               "stop_when quality: new pairs between two fits");
+  node.integer("max_pairs", &NodeParameters::max_pairs, {1, 100000}, "",
+               "stop_when quality: the fit at this many pairs is the last, good or not",
+               "at least pairs_required");
   node.boolean("monitor_after_calibration", &NodeParameters::monitor_after_calibration,
                "after a calibration, go on watching its result for drift");
   node.boolean("auto_update", &NodeParameters::auto_update,
@@ -76,6 +86,11 @@ NodeParameters loadNodeParameters(const ParameterSource& source) {
                         "must be an integer in [1, " + std::to_string(p.core.pairs_required) + "]");
     }
     p.min_pairs_to_calibrate = p.core.pairs_required;
+  }
+  if (p.stop_when == StopWhen::kQuality && p.max_pairs < p.core.pairs_required) {
+    throwBadParameter(source, "max_pairs",
+                      "must be at least pairs_required (" + std::to_string(p.core.pairs_required) +
+                          ") with stop_when quality");
   }
   if (p.resume && p.dataset_bag.empty()) {
     throw std::invalid_argument(

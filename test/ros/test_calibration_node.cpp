@@ -27,6 +27,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -89,6 +90,9 @@ TEST(NodeBag, ReachesDonePublishesTruthAndWritesYaml) {
   EXPECT_TRUE(collecting != s.end() && optimizing != s.end() && done != s.end()) << joined(s);
   EXPECT_EQ(g_observed.last_status.child_frame, expected_child);
   EXPECT_GE(g_observed.last_status.pairs_kept, g_observed.last_status.pairs_required);
+  // ~stop_when quality: one fit per step until ~max_pairs.
+  EXPECT_GE(static_cast<int>(g_observed.last_status.pairs_kept), pnh.param("min_pairs_kept", 0));
+  EXPECT_EQ(std::count(s.begin(), s.end(), "optimizing"), pnh.param("min_fits", 1)) << joined(s);
 
   // The transform: T_lidar_camera on /tf_static, compared with the generator's truth.
   geometry_msgs::TransformStamped published;

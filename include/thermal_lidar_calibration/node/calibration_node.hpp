@@ -88,6 +88,9 @@ class CalibrationNode {
 
   // calibration_node_result.cpp
   std::string startOptimization(const std::string& why);  // "" when started, else the refusal
+  // Pairs at which the next fit starts by itself: ~pairs_required, then with ~stop_when quality
+  // quality_check_every_pairs more after each fit whose verdict was not good.
+  std::size_t nextFitPairs() const;
   void handleOutcome(CalibrationWorker::Outcome outcome);
   void publishResult();
   // Writes ~output_file and reads it back; "" when the file holds the result, else why not.
@@ -156,6 +159,7 @@ class CalibrationNode {
   std::string drift_error_;
   std::vector<DriftUpdateEntry> drift_history_;  // accepted updates, oldest first
   bool discard_outcome_ = false;  // set by ~reset while a run is stopping
+  std::size_t next_fit_pairs_ = 0;  // 0: ~pairs_required (stop_when quality raises it)
   std::uint8_t state_ = CalibrationStatus::COLLECTING;
   std::string state_message_;
   std::optional<CalibrationResult> result_;

@@ -15,11 +15,17 @@ namespace ros_io {
 // ~mode: collect pairs and optimize, or watch the extrinsic in use for drift (issue 9).
 enum class NodeMode { kCalibrate, kMonitor };
 
+// ~stop_when: optimize once at ~pairs_required, or again and again until the verdict is good.
+enum class StopWhen { kPairs, kQuality };
+
 struct NodeParameters {
   CoreParameters core;
   NodeMode mode = NodeMode::kCalibrate;
   bool monitor_after_calibration = false;  // after a calibration, watch its result for drift
   bool auto_update = false;          // publish and write a confirmed new extrinsic unasked
+  StopWhen stop_when = StopWhen::kPairs;
+  int quality_check_every_pairs = 10;  // stop_when quality: optimize again after this many new pairs
+  int max_pairs = 200;                 // stop_when quality: the last fit, good or not
   std::string output_file = "thermal_lidar_calibration.yaml";  // relative to ROS_HOME
   std::string dataset_bag = "thermal_lidar_dataset.bag";       // "" = do not record pairs
   bool resume = false;               // reload dataset_bag at start and continue it
