@@ -30,7 +30,23 @@ std::string CalibrationNode::startOptimization(const std::string& why) {
   result_stamps_s_.clear();
   for (const auto& pair : builder_->pairs()) result_stamps_s_.push_back(pair.stamp_s);
   discard_outcome_ = false;
-  CalibrationWorker::QualityRequest quality{params_.core.quality, reference_};
+  // The calibration in use, to compare with: ~reference_file, else what the tf tree holds between
+  // the two frames (not this node's own earlier result: only while it has not published under
+  // the camera frame itself).
+  std::optional<Extrinsic> reference = reference_;
+  reference_source_ = reference ? "file" : "";
+  reference_origin_ = reference ? params_.reference_file : "";
+  const std::string lidar = builder_->lidarFrame(), camera = builder_->cameraFrame();
+  if (!reference && !lidar.empty() && !camera.empty() && published_child_ != camera) {
+    std::string ignored;
+    reference = tf_publisher_->lookupExtrinsic(lidar, camera, &ignored);
+    if (reference) {
+      reference_source_ = "tf";
+      reference_origin_ = "tf " + lidar + " -> " + camera;
+      ROS_INFO("comparing with the calibration in the tf tree (%s)", reference_origin_.c_str());
+    }
+  }
+  CalibrationWorker::QualityRequest quality{params_.core.quality, reference};
   quality.config.uncertainty.seed = params_.core.calibration.seed;
   quality.config.uncertainty.num_threads = params_.core.calibration.num_threads;
   worker_.start(builder_->camera(), builder_->pairs(), params_.core.calibration, quality);
@@ -57,8 +73,8 @@ void CalibrationNode::handleOutcome(CalibrationWorker::Outcome outcome) {
   result_ = std::move(outcome.result);
   quality_ = std::move(outcome.quality);
   if (quality_ && quality_->reference) {
-    quality_->reference->source = "file";
-    quality_->reference->origin = params_.reference_file;
+    quality_->reference->source = reference_source_;
+    quality_->reference->origin = reference_origin_;
   }
   if (!outcome.error.empty()) ROS_WARN("%s", outcome.error.c_str());
   if (quality_) {

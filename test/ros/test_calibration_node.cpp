@@ -23,6 +23,7 @@
 #include <sensor_msgs/point_cloud2_iterator.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_msgs/TFMessage.h>
+#include <tf2_ros/static_transform_broadcaster.h>
 #include <yaml-cpp/yaml.h>
 
 #include <Eigen/Geometry>
@@ -64,6 +65,18 @@ TEST(NodeBag, ReachesDonePublishesTruthAndWritesYaml) {
   const std::string camera_frame = pnh.param<std::string>("camera_frame", "thermal_optical");
   const std::string expected_child = pnh.param<std::string>("expected_child", camera_frame);
   const std::string existing_parent = pnh.param<std::string>("existing_parent", "");
+  // The robot's tf connecting the LiDAR to the camera's parent ("parent child", identity): the
+  // node then compares its result with the calibration the tf tree holds.
+  const std::string robot_link = pnh.param<std::string>("robot_link", "");
+  tf2_ros::StaticTransformBroadcaster robot_tf;
+  if (!robot_link.empty()) {
+    geometry_msgs::TransformStamped link;
+    link.header.stamp = ros::Time::now();
+    link.header.frame_id = robot_link.substr(0, robot_link.find(' '));
+    link.child_frame_id = robot_link.substr(robot_link.find(' ') + 1);
+    link.transform.rotation.w = 1.0;
+    robot_tf.sendTransform(link);
+  }
   const double rot_tol_deg = pnh.param("rotation_tolerance_deg", 1.0);
   const double trans_tol_m = pnh.param("translation_tolerance_m", 0.05);
   const double max_loss_px = pnh.param("max_loss_px", 1.0);
@@ -129,6 +142,11 @@ TEST(NodeBag, ReachesDonePublishesTruthAndWritesYaml) {
     const std::string html((std::istreambuf_iterator<char>(index)), std::istreambuf_iterator<char>());
     EXPECT_NE(html.find("<img src=\"overlays.png\">"), std::string::npos) << report_index;
     EXPECT_NE(html.find("calibration_node"), std::string::npos) << report_index;
+  }
+  if (!robot_link.empty()) {
+    ASSERT_TRUE(yaml["reference"]) << "no comparison with the tf tree's calibration";
+    EXPECT_EQ(yaml["reference"]["source"].as<std::string>(), "tf");
+    EXPECT_EQ(yaml["reference"]["origin"].as<std::string>(), "tf " + lidar_frame + " -> " + camera_frame);
   }
   ASSERT_TRUE(yaml["verdict"]);
   EXPECT_GE(yaml["verdict_reasons"].size(), 1u);

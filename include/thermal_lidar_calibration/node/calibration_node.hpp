@@ -165,6 +165,7 @@ class CalibrationNode {
   std::optional<CalibrationResult> result_;
   std::optional<QualityAssessment> quality_;  // of result_: intervals, coverage, verdict, reference
   std::optional<Extrinsic> reference_;        // ~reference_file
+  std::string reference_source_, reference_origin_;  // of the run's reference: "file" / "tf"
   std::vector<double> result_stamps_s_;
   std::string camera_frame_, lidar_frame_;
   std::string published_child_;
