@@ -227,5 +227,42 @@ Solid makeBush(const Eigen::Vector2d& ground_xy, const Eigen::Vector3d& radii_m)
   return bush;
 }
 
+namespace {
+// A point given in an object's own frame (x forward, y left, z up) placed at `xy` turned by yaw.
+Eigen::Vector3d placed(const Eigen::Vector2d& xy, double yaw, double x, double y, double z) {
+  return Eigen::Vector3d(xy.x() + std::cos(yaw) * x - std::sin(yaw) * y,
+                         xy.y() + std::sin(yaw) * x + std::cos(yaw) * y, z);
+}
+Eigen::Matrix3d yawAxes(double yaw) {
+  return Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+}
+}  // namespace
+
+Solid makeParkedVehicle(const Eigen::Vector2d& ground_xy, double yaw_rad, bool engine) {
+  Solid s;
+  if (engine) {
+    s.add(Ellipsoid{placed(ground_xy, yaw_rad, 1.75, 0.0, 0.75), yawAxes(yaw_rad),
+                    Eigen::Vector3d(0.45, 0.75, 0.3)});
+    return s;
+  }
+  for (double y : {-0.45, 0.45}) {  // lower body: two capsules along the length
+    s.add(Capsule{placed(ground_xy, yaw_rad, -1.6, y, 0.65), placed(ground_xy, yaw_rad, 1.5, y, 0.65), 0.42});
+  }
+  s.add(Capsule{placed(ground_xy, yaw_rad, -0.9, 0.0, 1.15), placed(ground_xy, yaw_rad, 0.6, 0.0, 1.15), 0.35});  // cabin
+  return s;
+}
+
+Solid makeAnimal(const Eigen::Vector2d& ground_xy, double yaw_rad) {
+  Solid s;
+  s.add(Ellipsoid{placed(ground_xy, yaw_rad, 0.0, 0.0, 0.62), yawAxes(yaw_rad), Eigen::Vector3d(0.45, 0.2, 0.2)});
+  s.add(Ellipsoid{placed(ground_xy, yaw_rad, 0.55, 0.0, 0.78), yawAxes(yaw_rad), Eigen::Vector3d(0.14, 0.09, 0.1)});
+  for (double x : {-0.32, 0.32}) {
+    for (double y : {-0.1, 0.1}) {
+      s.add(Capsule{placed(ground_xy, yaw_rad, x, y, 0.0), placed(ground_xy, yaw_rad, x, y, 0.5), 0.045});
+    }
+  }
+  return s;
+}
+
 }  // namespace synthetic
 }  // namespace thermal_lidar_calibration

@@ -72,6 +72,32 @@ SyntheticRig::SyntheticRig(const SyntheticConfig& config) : config_(config) {
   std::uniform_real_distribution<double> grey(185.0, 215.0);
   for (std::size_t i = 0; i < scene_->people().size(); ++i) person_grey_.push_back(grey(rng));
   drawChange();
+  if (config_.raw) placeConfounders();
+}
+
+// What fools a thermal person detector besides sun-heated posts (issue 7): every 25 s of drive a
+// parked vehicle (cool body, engine hotter than a person) or an animal (body temperature, four
+// legs), 4-6 s ahead of the vehicle and 5-11 m to its side. Its own random stream: the people
+// and the rest of the drive are the same as without them.
+void SyntheticRig::placeConfounders() {
+  constexpr int kConfounderIdBase = 500;
+  std::mt19937_64 rng(mixSeed(config_.seed, 17, 0));
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double duration = config_.frames / config_.frame_rate_hz;
+  int k = 0;
+  for (double t = 8.0; t < duration; t += 25.0, ++k) {
+    const VehiclePose at = scene_->vehicleAt(t + 4.0 + 2.0 * unit(rng));
+    const Eigen::Vector2d normal(-std::sin(at.yaw_rad), std::cos(at.yaw_rad));
+    const Eigen::Vector2d xy = at.xy + (unit(rng) < 0.5 ? -1.0 : 1.0) * (5.0 + 6.0 * unit(rng)) * normal;
+    const double yaw = at.yaw_rad + (unit(rng) - 0.5) * M_PI;
+    const int id = kConfounderIdBase + 2 * k;
+    if (k % 2 == 0) {
+      confounders_.push_back({makeParkedVehicle(xy, yaw, false), id, 95.0});
+      confounders_.push_back({makeParkedVehicle(xy, yaw, true), id + 1, 300.0});  // ~325 K: above the band
+    } else {
+      confounders_.push_back({makeAnimal(xy, yaw), id, 190.0 + 15.0 * unit(rng)});  // in the band
+    }
+  }
 }
 
 void SyntheticRig::drawChange() {
@@ -145,6 +171,14 @@ std::vector<WorldObject> SyntheticRig::snapshot(int index) const {
     // Raw data: every fourth post or bush is sun-heated into the body band (~300 K), a warm
     // confounder only its shape tells from a person.
     if (config_.raw && item.id % 4 == 0) obj.grey_level = 180.0 + 3.0 * (item.id % 5);
+    objects.push_back(std::move(obj));
+  }
+  for (const Confounder& c : confounders_) {
+    if ((c.solid.boundingCentre().head<2>() - vehicle.xy).norm() > kWorldCullM) continue;
+    WorldObject obj;
+    obj.solid = c.solid.transformed(T_lidar_world);
+    obj.clutter_id = c.id;
+    obj.grey_level = c.grey_level;
     objects.push_back(std::move(obj));
   }
   removePeopleSeenInEmptyRegion(objects, index);

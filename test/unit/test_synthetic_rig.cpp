@@ -276,3 +276,34 @@ TEST(SyntheticRig, PresetsAndBadConfigs) {
   // A cluster below min_points_per_cluster rejects the frame, as in the ingest path.
   EXPECT_EQ(syn::gateFrames({{1, 1, 2}}, tlc::GateConfig{})[tlc::GateDecision::kSmallCluster], 1u);
 }
+
+// Raw drives carry warm confounders (issue 7): parked vehicles (a cool body, an engine hotter
+// than the body band) and animals at body temperature, beside the path, seen within the drive;
+// they come from their own random stream, so the people are the same as without them.
+TEST(SyntheticRig, RawDrivesHaveParkedVehiclesAndAnimalsBesideTheSamePeople) {
+  syn::SyntheticConfig ideal = smallConfig("fieldsafe", 600);
+  syn::SyntheticConfig raw = ideal;
+  raw.raw = true;
+  const syn::SyntheticRig ideal_rig(ideal), raw_rig(raw);
+  std::set<int> confounders_seen;
+  int engines = 0, animals = 0;
+  for (int i = 0; i < 600; i += 20) {
+    const auto with = raw_rig.snapshot(i), without = ideal_rig.snapshot(i);
+    int people_with = 0, people_without = 0;
+    for (const auto& o : with) people_with += o.isPerson() ? 1 : 0;
+    for (const auto& o : without) people_without += o.isPerson() ? 1 : 0;
+    EXPECT_EQ(people_with, people_without) << "frame " << i;
+    for (const auto& o : without) EXPECT_LT(o.clutter_id, 500) << "a confounder in an ideal drive";
+    for (const auto& o : with) {
+      if (o.clutter_id < 500) continue;
+      // Close enough to be seen: within 30 m of the LiDAR.
+      if (o.solid.boundingCentre().head<2>().norm() > 30.0) continue;
+      if (confounders_seen.insert(o.clutter_id).second) {
+        engines += o.grey_level > 255 ? 1 : 0;                        // hotter than any person
+        animals += (o.grey_level >= 185 && o.grey_level <= 215) ? 1 : 0;  // in the body band
+      }
+    }
+  }
+  EXPECT_GE(engines, 1);
+  EXPECT_GE(animals, 1);
+}

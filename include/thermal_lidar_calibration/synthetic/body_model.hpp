@@ -75,6 +75,12 @@ Solid makePersonBody(const BodyPose& pose);
 // Non-person clutter the LiDAR detector may mistake for a person.
 Solid makePost(const Eigen::Vector2d& ground_xy, double height_m, double radius_m);
 Solid makeBush(const Eigen::Vector2d& ground_xy, const Eigen::Vector3d& radii_m);
+// A parked car's body (two rounded slabs, 4.2 x 1.8 x 1.5 m) and its engine block at the front
+// (`engine` true: only the engine, for its own temperature), heading `yaw_rad`.
+Solid makeParkedVehicle(const Eigen::Vector2d& ground_xy, double yaw_rad, bool engine);
+// A four-legged animal the size of a sheep or a large dog (body 0.9 m long, back at ~0.75 m):
+// at body temperature, but not person-shaped.
+Solid makeAnimal(const Eigen::Vector2d& ground_xy, double yaw_rad);
 
 }  // namespace synthetic
 }  // namespace thermal_lidar_calibration

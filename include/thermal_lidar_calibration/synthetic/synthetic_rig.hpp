@@ -150,6 +150,15 @@ class SyntheticRig {
   std::unique_ptr<ThermalRenderer> renderer_after_;  // with the extrinsic after the change
   ExtrinsicChange change_;
   std::vector<double> person_grey_;
+  // Raw data's warm confounders (parked vehicles with a hot engine, animals at body
+  // temperature), world frame, placed beside the path by placeConfounders().
+  struct Confounder {
+    Solid solid;
+    int id = 0;           // clutter id (from kConfounderIdBase)
+    double grey_level = 0;
+  };
+  std::vector<Confounder> confounders_;
+  void placeConfounders();
 };
 
 // The decisions a consumer's gate (core FrameGate, as in DatasetBuilder) makes on frames with
