@@ -3,6 +3,8 @@
 
 #include "thermal_lidar_calibration/node/calibration_node.hpp"
 
+#include "thermal_lidar_calibration/core/coverage.hpp"
+#include "thermal_lidar_calibration/core/verdict.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 
 #include <unistd.h>
@@ -196,11 +198,27 @@ void CalibrationNode::onFrame(const sensor_msgs::Image::ConstPtr& image,
   }
   ROS_DEBUG("kept frame %.3f (%d people): %s", image->header.stamp.toSec(), outcome.mask_people,
             progressLine().c_str());
+  assessCollection();
   if (builder_->pairs().size() >= nextFitPairs() && state_ == CalibrationStatus::COLLECTING) {
     startOptimization(next_fit_pairs_ == 0 ? "~pairs_required reached"
                                            : "~stop_when quality: " + std::to_string(nextFitPairs()) +
                                                  " pairs, fitting again");
   }
+}
+
+// Where the people were so far and what is missing, before a fit tells more: coverage only (the
+// verdict without intervals is at best usable). Cheap (mask pixel counts), every
+// ~quality_check_every_pairs kept pairs.
+void CalibrationNode::assessCollection() {
+  if (params_.stop_when != StopWhen::kQuality) return;
+  const std::size_t n = builder_->pairs().size();
+  if (n < collecting_quality_pairs_ + static_cast<std::size_t>(params_.quality_check_every_pairs)) return;
+  collecting_quality_pairs_ = n;
+  QualityAssessment q;
+  q.coverage = computeCoverage(builder_->camera(), builder_->pairs(), {}, std::nullopt,
+                               params_.core.quality.coverage);
+  q.verdict = judgeQuality(q.coverage, std::nullopt, params_.core.quality.verdict);
+  collecting_quality_ = std::move(q);
 }
 
 }  // namespace ros_io

@@ -25,6 +25,8 @@ bool CalibrationNode::onReset(std_srvs::Trigger::Request& /*req*/, std_srvs::Tri
   stored_stamps_ns_.clear();
   pairs_resumed_ = 0;
   next_fit_pairs_ = 0;
+  collecting_quality_.reset();
+  collecting_quality_pairs_ = 0;
   result_.reset();
   quality_.reset();
   result_published_ = true;

@@ -2,6 +2,7 @@
 
 #include "thermal_lidar_calibration/node/calibration_node.hpp"
 
+#include <cstdio>
 #include <sstream>
 
 namespace thermal_lidar_calibration {
@@ -18,14 +19,27 @@ const char* stateName(std::uint8_t state) {
   return "unknown";
 }
 
+const QualityAssessment* CalibrationNode::latestQuality() const {
+  if (quality_) return &*quality_;
+  if (collecting_quality_) return &*collecting_quality_;
+  return nullptr;
+}
+
 std::string CalibrationNode::progressLine() const {
   std::ostringstream s;
   const std::size_t kept = builder_ ? builder_->pairs().size() : 0;
   s << "kept " << kept << "/" << nextFitPairs();
   if (!builder_) return s.str() + " (no intrinsics yet)";
-  if (next_fit_pairs_ != 0 && quality_) {  // ~stop_when quality: what is missing
-    s << " (verdict " << toString(quality_->verdict.verdict);
-    if (!quality_->verdict.reasons.empty()) s << ": " << quality_->verdict.reasons.front();
+  // ~stop_when quality: the latest fit's verdict, or before the first fit the coverage so far.
+  const QualityAssessment* q = params_.stop_when == StopWhen::kQuality ? latestQuality() : nullptr;
+  if (q) {
+    char thirds[64];
+    std::snprintf(thirds, sizeof(thirds), "image thirds %.0f / %.0f / %.0f %%",
+                  100 * q->coverage.thirdFraction(0), 100 * q->coverage.thirdFraction(1),
+                  100 * q->coverage.thirdFraction(2));
+    s << " (" << thirds << "; " << (quality_ ? "verdict " : "so far ")
+      << toString(q->verdict.verdict);
+    if (!q->verdict.reasons.empty()) s << ": " << q->verdict.reasons.front();
     s << ")";
   }
   const RejectionCounts& c = builder_->counts();
@@ -121,6 +135,10 @@ void CalibrationNode::publishStatus() {
   msg.recording_error = recorder_ ? recorder_->stopReason() : "";
   msg.output_file = params_.output_file;
   msg.child_frame = result_ && result_published_ ? published_child_ : "";
+  if (const QualityAssessment* q = latestQuality()) {
+    for (int i = 0; i < 3; ++i) msg.coverage_third_fractions[i] = q->coverage.thirdFraction(i);
+    msg.quality_missing = q->verdict.reasons.empty() ? "" : q->verdict.reasons.front();
+  }
   fillDriftStatus(msg);
   status_pub_.publish(msg);
 }

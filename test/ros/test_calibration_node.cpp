@@ -103,7 +103,15 @@ TEST(NodeBag, ReachesDonePublishesTruthAndWritesYaml) {
   EXPECT_TRUE(collecting != s.end() && optimizing != s.end() && done != s.end()) << joined(s);
   EXPECT_EQ(g_observed.last_status.child_frame, expected_child);
   EXPECT_GE(g_observed.last_status.pairs_kept, g_observed.last_status.pairs_required);
-  // ~stop_when quality: one fit per step until ~max_pairs.
+  // ~stop_when quality: before the first fit ~status says what the data covers and what is
+  // missing; then one fit per step until ~max_pairs.
+  if (pnh.param("min_fits", 1) > 1) {
+    ASSERT_TRUE(g_observed.first_collecting_coverage) << "no coverage on ~status while collecting";
+    const auto& c = *g_observed.first_collecting_coverage;
+    const double sum = c.coverage_third_fractions[0] + c.coverage_third_fractions[1] + c.coverage_third_fractions[2];
+    EXPECT_NEAR(sum, 1.0, 1e-6) << c;
+    std::cout << "[ node ] while collecting, " << c.pairs_kept << " pairs: " << c.quality_missing << "\n";
+  }
   EXPECT_GE(static_cast<int>(g_observed.last_status.pairs_kept), pnh.param("min_pairs_kept", 0));
   EXPECT_EQ(std::count(s.begin(), s.end(), "optimizing"), pnh.param("min_fits", 1)) << joined(s);
 

@@ -18,6 +18,7 @@
 #include <functional>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,9 @@ struct Observed {
   std::vector<std::string> node_warnings;  // /rosout WARN+ from calibration_node
   std::map<std::string, diagnostic_msgs::DiagnosticStatus> diagnostics;  // latest, by name
   std::atomic<int> input_images{0};  // on thermal/image_raw, to tell when the player is done
+  // The first ~status that said, while collecting before any fit, what the data covers and what
+  // is missing (~stop_when quality).
+  std::optional<CalibrationStatus> first_collecting_coverage;
 };
 inline Observed g_observed;
 
@@ -47,6 +51,10 @@ inline void onStatus(const CalibrationStatus::ConstPtr& msg) {
   }
   g_observed.last_status = *msg;
   ++g_observed.status_messages;
+  if (!g_observed.first_collecting_coverage && msg->state == CalibrationStatus::COLLECTING &&
+      !msg->quality_missing.empty() && msg->final_loss == 0.0) {
+    g_observed.first_collecting_coverage = *msg;
+  }
 }
 
 inline void onTfStatic(const ros::MessageEvent<tf2_msgs::TFMessage const>& event) {

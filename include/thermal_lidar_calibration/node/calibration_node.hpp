@@ -160,6 +160,13 @@ class CalibrationNode {
   std::vector<DriftUpdateEntry> drift_history_;  // accepted updates, oldest first
   bool discard_outcome_ = false;  // set by ~reset while a run is stopping
   std::size_t next_fit_pairs_ = 0;  // 0: ~pairs_required (stop_when quality raises it)
+  // ~stop_when quality while collecting: coverage and verdict of the pairs so far (no fit yet),
+  // refreshed every ~quality_check_every_pairs kept pairs.
+  std::optional<QualityAssessment> collecting_quality_;
+  std::size_t collecting_quality_pairs_ = 0;
+  void assessCollection();
+  // The latest fit's assessment, else the collection's so far; nullptr when neither exists.
+  const QualityAssessment* latestQuality() const;
   std::uint8_t state_ = CalibrationStatus::COLLECTING;
   std::string state_message_;
   std::optional<CalibrationResult> result_;
