@@ -76,11 +76,7 @@ void writeDriftUpdateFile(const std::string& path, const std::string& lidar_fram
       throw std::runtime_error("cannot write result file " + path);
     }
   }
-  const Extrinsic stored = readExtrinsicFile(path);
-  if ((stored.rotation_vector - latest.extrinsic.rotation_vector).norm() > 1e-9 ||
-      (stored.translation - latest.extrinsic.translation).norm() > 1e-9) {
-    throw std::runtime_error(path + " does not hold the new extrinsic after writing");
-  }
+  checkExtrinsicFile(path, latest.extrinsic);
 }
 
 }  // namespace thermal_lidar_calibration

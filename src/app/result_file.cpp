@@ -172,6 +172,14 @@ void writeResultFile(const std::string& path, const CalibrationResult& result,
   }
 }
 
+void checkExtrinsicFile(const std::string& path, const Extrinsic& expected) {
+  const Extrinsic stored = readExtrinsicFile(path);
+  if ((stored.rotation_vector - expected.rotation_vector).norm() > 1e-9 ||
+      (stored.translation - expected.translation).norm() > 1e-9) {
+    throw std::runtime_error(path + " does not hold the extrinsic after writing");
+  }
+}
+
 Extrinsic readExtrinsicFile(const std::string& path) {
   const YAML::Node root = loadYamlFile(path, "extrinsic file");
   if (!root.IsMap()) fail(path, "is not a YAML map with rotation_vector and translation");

@@ -26,6 +26,18 @@ std::string changeText(const DriftChange& c) {
   return text;
 }
 
+// What the watch measured last: the confirmed new extrinsic against the reference when there is
+// one, else the latest window's fit (zeros before the first test).
+struct LatestDrift {
+  DriftChange change;
+  double loss_reference = 0.0, loss_fit = 0.0;
+};
+LatestDrift latestDrift(const DriftWatchWorker::Snapshot& s) {
+  if (s.candidate) return {s.candidate->change, s.candidate->loss_reference, s.candidate->loss_fit};
+  if (s.last) return {s.last->test.change, s.last->test.loss_reference, s.last->test.loss_fit};
+  return {};
+}
+
 }  // namespace
 
 void CalibrationNode::startMonitoring(const Extrinsic& reference, const std::string& origin) {
@@ -82,9 +94,7 @@ void CalibrationNode::updateDrift() {
     ROS_ERROR("drift watch: a test failed: %s", s.error.c_str());
   }
   if (s.state != last_drift_state_) {
-    const DriftChange change = s.candidate ? s.candidate->change
-                               : s.last    ? s.last->test.change
-                                           : DriftChange{};
+    const DriftChange change = latestDrift(s).change;
     const double loss_ref = s.last ? s.last->test.loss_reference : 0.0;
     const double loss_fit = s.last ? s.last->test.loss_fit : 0.0;
     const char* what = s.state == DriftState::kError ? "confirmed: the extrinsic no longer fits"
@@ -168,18 +178,14 @@ void CalibrationNode::fillDriftStatus(CalibrationStatus& msg) const {
   msg.drift_pairs_seen = static_cast<std::uint32_t>(s.pairs_seen);
   msg.drift_pairs_in_window = static_cast<std::uint32_t>(s.pairs_in_window);
   msg.drift_tests = static_cast<std::uint32_t>(s.tests);
-  const DriftChange change = s.candidate ? s.candidate->change
-                             : s.last    ? s.last->test.change
-                                         : DriftChange{};
-  msg.drift_rotation_change_deg = change.angle_deg;
+  const LatestDrift latest = latestDrift(s);
+  msg.drift_rotation_change_deg = latest.change.angle_deg;
   for (int i = 0; i < 3; ++i) {
-    msg.drift_rotation_change_axes_deg[i] = change.rotation_deg[i];
-    msg.drift_translation_change_cm[i] = change.translation_cm[i];
+    msg.drift_rotation_change_axes_deg[i] = latest.change.rotation_deg[i];
+    msg.drift_translation_change_cm[i] = latest.change.translation_cm[i];
   }
-  msg.drift_loss_reference = s.candidate ? s.candidate->loss_reference
-                             : s.last    ? s.last->test.loss_reference
-                                         : 0.0;
-  msg.drift_loss_fit = s.candidate ? s.candidate->loss_fit : s.last ? s.last->test.loss_fit : 0.0;
+  msg.drift_loss_reference = latest.loss_reference;
+  msg.drift_loss_fit = latest.loss_fit;
   msg.drift_update_available = s.candidate.has_value() && s.state == DriftState::kError;
   msg.drift_updates = static_cast<std::uint32_t>(drift_history_.size());
   for (int i = 0; i < 3; ++i) {
@@ -196,26 +202,21 @@ void CalibrationNode::diagnoseDrift(NodeDiagnostics::Status& status) const {
                                              : "not monitoring (~mode: calibrate)");
     return;
   }
-  CalibrationStatus msg;
-  fillDriftStatus(msg);
   const DriftWatchWorker::Snapshot s = drift_->snapshot();
+  const LatestDrift latest = latestDrift(s);
+  const DriftChange& change = latest.change;
   const std::uint8_t level = s.state == DriftState::kError  ? DiagnosticStatus::ERROR
                              : s.state == DriftState::kWarn ? DiagnosticStatus::WARN
                                                             : DiagnosticStatus::OK;
-  DriftChange change;
-  change.angle_deg = msg.drift_rotation_change_deg;
-  for (int i = 0; i < 3; ++i) {
-    change.rotation_deg[i] = msg.drift_rotation_change_axes_deg[i];
-    change.translation_cm[i] = msg.drift_translation_change_cm[i];
-  }
   status.summary(level, std::string(toString(s.state)) + ": change " + changeText(change));
   status.add("reference", drift_reference_);
-  status.addf("loss of the reference (px)", "%.4f", msg.drift_loss_reference);
-  status.addf("loss of the new fit (px)", "%.4f", msg.drift_loss_fit);
+  status.addf("loss of the reference (px)", "%.4f", latest.loss_reference);
+  status.addf("loss of the new fit (px)", "%.4f", latest.loss_fit);
   status.add("pairs seen", s.pairs_seen);
   status.add("pairs in window", s.pairs_in_window);
   status.add("tests", s.tests);
-  status.add("update available", msg.drift_update_available ? "yes: ~accept_update" : "no");
+  const bool update_available = s.candidate.has_value() && s.state == DriftState::kError;
+  status.add("update available", update_available ? "yes: ~accept_update" : "no");
   status.add("updates accepted", drift_history_.size());
   if (s.candidates_refused > 0) {
     status.add("new fits refused (beyond monitor_max_update_*)", s.candidates_refused);

@@ -94,6 +94,37 @@ TEST(DatasetBagWriter, FullDiskIsAnErrorAndEarlierPairsSurvive) {
 
 namespace {
 
+// A child process running `body`, which calls ack() after each pair it wrote; the parent reads
+// the acknowledgements from `acks_fd` (countAcks) once the child is gone.
+struct AckingChild {
+  pid_t pid;
+  int acks_fd;
+};
+AckingChild forkAckingChild(const std::function<void(const std::function<void()>& ack)>& body) {
+  int fds[2];
+  if (::pipe(fds) != 0) throw std::runtime_error("pipe failed");
+  std::fflush(nullptr);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::close(fds[0]);
+    body([&] {
+      const char ack = 1;
+      if (::write(fds[1], &ack, 1) != 1) std::_Exit(3);
+    });
+    std::_Exit(0);
+  }
+  ::close(fds[1]);
+  return {pid, fds[0]};
+}
+
+int countAcks(int fd) {
+  int count = 0;
+  char acks[4096];
+  for (ssize_t n; (n = ::read(fd, acks, sizeof(acks))) > 0;) count += static_cast<int>(n);
+  ::close(fd);
+  return count;
+}
+
 std::size_t connectionsIn(const std::string& path) {
   rosbag::Bag bag(path, rosbag::bagmode::Read);
   return rosbag::View(bag).getConnections().size();
@@ -194,29 +225,20 @@ TEST(DatasetBagWriter, AKillAtAnyMomentKeepsEveryWrittenPair) {
   constexpr int kTrials = 30;
   int acknowledged = 0, journals = 0;
   for (int trial = 0; trial < kTrials; ++trial) {
-    int fds[2];
-    ASSERT_EQ(::pipe(fds), 0);
-    std::fflush(nullptr);
-    const pid_t pid = ::fork();
-    if (pid == 0) {
-      ::close(fds[0]);
+    const AckingChild child = forkAckingChild([&](const std::function<void()>& ack) {
       DatasetBagWriter writer(path, true);
       for (int i = 0;; ++i) {
         PairMessages m = pairs[i % 2];
         m.image.header.stamp = ros::Time(100.0 + trial * 1000 + i);
         write(writer, m);
-        const char ack = 1;
-        if (::write(fds[1], &ack, 1) != 1) std::_Exit(3);
+        ack();
       }
-    }
-    ::close(fds[1]);
+    });
     std::this_thread::sleep_for(std::chrono::milliseconds(2 + rng() % 40));
-    ::kill(pid, SIGKILL);
+    ::kill(child.pid, SIGKILL);
     int status = 0;
-    ::waitpid(pid, &status, 0);
-    char acks[4096];
-    for (ssize_t n; (n = ::read(fds[0], acks, sizeof(acks))) > 0;) acknowledged += static_cast<int>(n);
-    ::close(fds[0]);
+    ::waitpid(child.pid, &status, 0);
+    acknowledged += countAcks(child.acks_fd);
     if (acknowledged == 0 && !std::filesystem::exists(path)) continue;  // killed before the first
     journals += std::filesystem::exists(path + ".journal") ? 1 : 0;  // killed inside an append
     const auto contents = tlc::ros_io::readDatasetBag(path);  // recovers from the journal
@@ -238,29 +260,18 @@ TEST(DatasetBagWriter, AKillAtAnyMomentKeepsEveryWrittenPair) {
 TEST(DatasetBagWriter, ADeathInsideAnAppendIsUndoneFromTheJournal) {
   const std::string dir = tlc::test_support::tempDir("tlc_dataset_death_");
   const std::string path = dir + "/dataset.bag";
-  int fds[2];
-  ASSERT_EQ(::pipe(fds), 0);
-  std::fflush(nullptr);
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    ::close(fds[0]);
+  const AckingChild child = forkAckingChild([&](const std::function<void()>& ack) {
     const rlimit limit{3u << 20, 3u << 20};  // SIGXFSZ keeps its default action: the end
     ::setrlimit(RLIMIT_FSIZE, &limit);
     DatasetBagWriter writer(path, false);
     for (int i = 0; i < 100; ++i) {
       write(writer, makePair(100.0 + i, i % 3));
-      const char ack = 1;
-      if (::write(fds[1], &ack, 1) != 1) std::_Exit(3);
+      ack();
     }
-    std::_Exit(0);
-  }
-  ::close(fds[1]);
+  });
   int status = 0;
-  ::waitpid(pid, &status, 0);
-  int acknowledged = 0;
-  char acks[256];
-  for (ssize_t n; (n = ::read(fds[0], acks, sizeof(acks))) > 0;) acknowledged += static_cast<int>(n);
-  ::close(fds[0]);
+  ::waitpid(child.pid, &status, 0);
+  const int acknowledged = countAcks(child.acks_fd);
   ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGXFSZ) << "the writer was not killed";
   ASSERT_GE(acknowledged, 1);
   ASSERT_TRUE(std::filesystem::exists(path + ".journal")) << "not killed inside an append";

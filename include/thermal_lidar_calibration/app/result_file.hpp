@@ -39,6 +39,9 @@ void writeResultFile(const std::string& path, const CalibrationResult& result,
                      const ResultContext& context);
 // Reads rotation_vector (or rotation_matrix) and translation. Throws std::invalid_argument.
 Extrinsic readExtrinsicFile(const std::string& path);
+// Reads `path` back after a write and throws std::runtime_error naming it unless it holds
+// `expected` (a full disk can take the rename and lose the data: a write not checked is not one).
+void checkExtrinsicFile(const std::string& path, const Extrinsic& expected);
 
 // Building blocks of the result file, shared with make_synthetic_bag's truth file. Both write
 // into a map the caller has opened; numbers use the caller's emitter precision.
