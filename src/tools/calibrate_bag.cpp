@@ -22,6 +22,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 
 namespace thermal_lidar_calibration {
@@ -183,6 +184,15 @@ int runCalibrateBag(const CalibrateBagOptions& options) {
   // Checked before the bag is read: a run must not end in "cannot write" after minutes of work.
   const std::string output_problem = whyNotWritable(options.output);
   if (!output_problem.empty()) throw std::invalid_argument("--output: " + output_problem);
+  if (!options.report.empty()) {
+    std::error_code made;
+    std::filesystem::create_directories(options.report, made);
+    const std::string report_problem =
+        made ? made.message() : whyNotWritable(options.report + "/index.html");
+    if (!report_problem.empty()) {
+      throw std::invalid_argument("--report " + options.report + ": " + report_problem);
+    }
+  }
   std::optional<Extrinsic> truth;
   if (!options.truth.empty()) truth = readExtrinsicFile(options.truth);
   std::optional<Extrinsic> reference;

@@ -152,3 +152,11 @@ TEST_F(CalibrateBagQualityCli, ReportWritesThePicturesAndAnIndex) {
   const RunResult usage = calibrate("full", "--monitor --reference x.yaml --report '" + report + "'");
   EXPECT_EQ(usage.exit_code, 2) << usage.err;
 }
+
+// A --report directory that cannot be made is one line at once, before the bag is read.
+TEST_F(CalibrateBagQualityCli, UnusableReportDirectoryIsOneLineBeforeAnyWork) {
+  const RunResult r = calibrate("full", "--report /proc/no_such_report --quiet");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("calibrate_bag: error: --report /proc/no_such_report: "), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.find("read:"), std::string::npos) << "the bag was read first:\n" << r.out;
+}
