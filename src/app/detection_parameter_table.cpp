@@ -51,9 +51,9 @@ void addThermalRows(ParameterTable<DetectionParameters>& t) {
   th.integer("thermal_min_height_px", &ThermalSegmenterConfig::min_height_px, {1, 100000}, "px",
              "smallest bounding-box height of a person");
   th.real("thermal_min_aspect", &ThermalSegmenterConfig::min_aspect, aboveRange(0, 100), "",
-          "bounding-box height / width at least (an animal is wider than high)");
+          "bounding-box height / width at least (an animal side on is about as high as long; a person, even striding, 1.6 or more)");
   th.real("thermal_max_aspect", &ThermalSegmenterConfig::max_aspect, aboveRange(0, 100), "",
-          "bounding-box height / width at most (a pole is thinner)", "at least thermal_min_aspect");
+          "bounding-box height / width at most (a person side on, legs together, reaches ~7; a pole is thinner)", "at least thermal_min_aspect");
   th.real("thermal_min_fill", &ThermalSegmenterConfig::min_fill, closedRange(0, 1), "",
           "region area / bounding-box area at least");
   th.real("thermal_max_fill", &ThermalSegmenterConfig::max_fill, closedRange(0, 1), "",
