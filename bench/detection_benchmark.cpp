@@ -10,6 +10,7 @@
 // Run: scripts/benchmark.sh --benchmark_filter='Thermal|Lidar|Textbook' (OpenCV is set to one
 // thread here; PCL and the detector use one).
 #include "thermal_lidar_calibration/detection/lidar_person_detector.hpp"
+#include "thermal_lidar_calibration/detection/person_size_model.hpp"
 #include "thermal_lidar_calibration/detection/thermal_person_segmenter.hpp"
 
 #include "../test/support/lidar_scene.hpp"
@@ -65,6 +66,25 @@ void BM_ThermalSegmentation(benchmark::State& state) {
   state.SetLabel(eight_bit ? "640x512 8-bit, relative" : "640x512 16-bit, radiometric");
 }
 BENCHMARK(BM_ThermalSegmentation)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// The ground-plane size check after segmentation, per frame: a full history (300 candidates)
+// and its refit every 5th frame included, as the live segmenter and calibrate_bag --detect run it.
+void BM_ThermalSizeCheck(benchmark::State& state) {
+  const detection::ThermalSegmentation frame = detection::ThermalPersonSegmenter().segment(benchFrame16());
+  detection::PersonSizeModel model;
+  for (int k = 0; k < 200; ++k) {
+    detection::ThermalSegmentation copy = frame;
+    detection::applySizeCheck(copy, model);
+  }
+  for (auto _ : state) {
+    detection::ThermalSegmentation copy = frame;  // the mask's pixels are shared, not copied
+    detection::applySizeCheck(copy, model);
+    benchmark::DoNotOptimize(copy.people.data());
+  }
+  state.counters["ready"] = model.fit() ? 1 : 0;
+  state.SetLabel("3 candidates per frame, 300 remembered");
+}
+BENCHMARK(BM_ThermalSizeCheck)->Unit(benchmark::kMicrosecond);
 
 const test_support::CraftedScan& benchScan() {
   static const test_support::CraftedScan scan = [] {

@@ -53,7 +53,7 @@ void addThermalRows(ParameterTable<DetectionParameters>& t) {
   th.real("thermal_min_aspect", &ThermalSegmenterConfig::min_aspect, aboveRange(0, 100), "",
           "bounding-box height / width at least (an animal side on is about as high as long; a person, even striding, 1.6 or more)");
   th.real("thermal_max_aspect", &ThermalSegmenterConfig::max_aspect, aboveRange(0, 100), "",
-          "bounding-box height / width at most (a person side on, legs together, reaches ~7; a pole is thinner)", "at least thermal_min_aspect");
+          "bounding-box height / width at most, and length / width along the region's own axis (a person side on, legs together, reaches ~7; a pole, upright or slanted, is thinner)", "at least thermal_min_aspect");
   th.real("thermal_min_fill", &ThermalSegmenterConfig::min_fill, closedRange(0, 1), "",
           "region area / bounding-box area at least");
   th.real("thermal_max_fill", &ThermalSegmenterConfig::max_fill, closedRange(0, 1), "",
@@ -62,6 +62,12 @@ void addThermalRows(ParameterTable<DetectionParameters>& t) {
           "a region whose height / width is below this is searched for people side by side");
   th.real("thermal_head_dip_fraction", &ThermalSegmenterConfig::head_dip_fraction, aboveRange(0, 1), "",
           "such a region is cut where its top profile dips this fraction of its height between two heads");
+  th.integer("thermal_size_history", &ThermalSegmenterConfig::size_history, {0, 100000}, "",
+             "candidates of recent frames from which the height people have at each foot row is learned; 0 = no size check");
+  th.integer("thermal_size_min_samples", &ThermalSegmenterConfig::size_min_samples, {10, 100000}, "",
+             "candidates seen before the size check judges");
+  th.real("thermal_size_min_ratio", &ThermalSegmenterConfig::size_min_ratio, closedRange(0, 1), "",
+          "a candidate shorter than this fraction of a person's height at its foot row is not a person (an animal end on)");
 }
 
 void addLidarRows(ParameterTable<DetectionParameters>& t) {

@@ -33,6 +33,9 @@ void ThermalSegmenterConfig::validate() const {
   requireRange("thermal_max_fill", max_fill, 0.0, 1.0);
   requireRange("thermal_split_max_aspect", split_max_aspect, 0.0, 100.0, Bound::kOpen);
   requireRange("thermal_head_dip_fraction", head_dip_fraction, 0.0, 1.0, Bound::kOpen);
+  requireRange("thermal_size_history", size_history, 0, 100000);
+  requireRange("thermal_size_min_samples", size_min_samples, 10, 100000);
+  requireRange("thermal_size_min_ratio", size_min_ratio, 0.0, 1.0);
   checks::requireOrdered("thermal_body_min_k", body_min_k, "thermal_body_max_k", body_max_k, true);
   checks::requireOrdered("thermal_min_aspect", min_aspect, "thermal_max_aspect", max_aspect, false);
   checks::requireOrdered("thermal_min_fill", min_fill, "thermal_max_fill", max_fill, false);

@@ -14,10 +14,10 @@ namespace thermal_lidar_calibration {
 namespace ros_io {
 
 PersonDetectionAdapter::PersonDetectionAdapter(const DetectionParameters& params)
-    : params_(params), segmenter_(params.thermal), lidar_(params.lidar) {}
+    : params_(params), segmenter_(params.thermal), person_size_(params.thermal), lidar_(params.lidar) {}
 
 SegmentedImage PersonDetectionAdapter::segment(const sensor_msgs::Image::ConstPtr& image,
-                                               const std::string& topic) const {
+                                               const std::string& topic) {
   SegmentedImage out;
   cv::Mat pixels = decodeMonoImage(*image, topic);  // throws invalid_argument naming the topic
   if (params_.input_flip == detection::ImageFlip::kNone) {
@@ -28,6 +28,7 @@ SegmentedImage PersonDetectionAdapter::segment(const sensor_msgs::Image::ConstPt
     out.image = flipped;
   }
   out.segmentation = segmenter_.segment(pixels);
+  detection::applySizeCheck(out.segmentation, person_size_);
   out.mask = cv_bridge::CvImage(image->header, sensor_msgs::image_encodings::MONO8,
                                 out.segmentation.mask)
                  .toImageMsg();

@@ -30,7 +30,8 @@ struct ThermalPerson {
 struct RejectedRegion {
   cv::Rect bbox;
   int area_px = 0;
-  std::string reason;  // "too_large", "too_short", "too_squat", "too_thin", "too_sparse", "too_full"
+  std::string reason;  // "too_large", "too_short", "too_squat", "too_thin", "too_sparse", "too_full",
+                      // "too_short_for_range" (person_size_model.hpp)
 };
 
 struct ThermalSegmentation {

@@ -53,6 +53,13 @@ struct ThermalSegmenterConfig {
   double split_max_aspect = 3.0;     // thermal_split_max_aspect: one person standing is ~3-4, two side by side ~2; (0, 100]
   double head_dip_fraction = 0.08;   // thermal_head_dip_fraction: of the region's height; (0, 1]
 
+  // --- Ground-plane size check (detection/person_size_model.hpp): a candidate much shorter
+  // than the people recent frames showed with their feet at the same image row is not a person
+  // (an animal end on). Needs a stream of frames; a single image is never judged.
+  int size_history = 300;      // thermal_size_history: candidates remembered; 0 = off; integer [0, 100000]
+  int size_min_samples = 60;   // thermal_size_min_samples: candidates before it judges; integer [10, 100000]
+  double size_min_ratio = 0.7; // thermal_size_min_ratio: of a person's height at that foot row; [0, 1]
+
   void validate() const;  // throws std::invalid_argument naming key, value and range
 };
 

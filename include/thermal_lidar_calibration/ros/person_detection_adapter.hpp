@@ -7,6 +7,7 @@
 
 #include "thermal_lidar_calibration/app/detection_parameters.hpp"
 #include "thermal_lidar_calibration/detection/lidar_person_detector.hpp"
+#include "thermal_lidar_calibration/detection/person_size_model.hpp"
 #include "thermal_lidar_calibration/detection/thermal_person_segmenter.hpp"
 
 #include <sensor_msgs/Image.h>
@@ -36,8 +37,9 @@ class PersonDetectionAdapter {
   explicit PersonDetectionAdapter(const DetectionParameters& params);
 
   // Throw std::invalid_argument naming `topic` on a message they cannot read (encoding, sizes,
-  // fields): the caller reports it and goes on.
-  SegmentedImage segment(const sensor_msgs::Image::ConstPtr& image, const std::string& topic) const;
+  // fields): the caller reports it and goes on. segment() learns from the frames it sees (the
+  // ground-plane size check): give it one camera's frames in time order.
+  SegmentedImage segment(const sensor_msgs::Image::ConstPtr& image, const std::string& topic);
   DetectedCloud detect(const sensor_msgs::PointCloud2& cloud, const std::string& topic);
 
   const DetectionParameters& parameters() const { return params_; }
@@ -45,6 +47,7 @@ class PersonDetectionAdapter {
  private:
   DetectionParameters params_;
   detection::ThermalPersonSegmenter segmenter_;
+  detection::PersonSizeModel person_size_;
   detection::LidarPersonDetector lidar_;
 };
 
