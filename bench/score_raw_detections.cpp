@@ -9,7 +9,9 @@
 // touches no image border and is at least 66 px tall (a 1.75 m person at 20 m on the FLIR A65:
 // 772 px focal length); LiDAR, a person with >= 10 points whose centre is within 20 m and inside
 // the detectors' bearing window (lidar_min/max_azimuth_deg, where the camera looks). Detections
-// of people who are not scored are ignored, neither right nor wrong.
+// of people who are not scored are ignored, neither right nor wrong. For the LiDAR a second
+// line ("lidar 20m") also leaves out detections whose centre is beyond 20 m, where no person is
+// scored (the targets are for that region); the first line counts every detection.
 // Usage: score_raw_detections RAW.bag   (make_synthetic_bag --raw; prints one line per modality)
 
 #include "thermal_lidar_calibration/detection/detection_scoring.hpp"
@@ -62,7 +64,8 @@ std::vector<det::TruthPerson> lidarPeople(const std::vector<Eigen::Vector3f>& po
   std::map<std::uint32_t, std::pair<Eigen::Vector3f, int>> sums;
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (truth[i] == 0) continue;
-    auto& s = sums[truth[i]];
+    // try_emplace with a zero sum: a value-initialised Eigen vector is not zeroed.
+    auto& s = sums.try_emplace(truth[i], Eigen::Vector3f::Zero(), 0).first->second;
     s.first += points[i];
     ++s.second;
   }
@@ -88,7 +91,7 @@ int main(int argc, char** argv) {
     const tlc::DetectionParameters params;
     tlc::ros_io::PersonDetectionAdapter adapter(params);
     rosbag::Bag bag(argv[1], rosbag::bagmode::Read);
-    det::DetectionScore thermal, lidar;
+    det::DetectionScore thermal, lidar, lidar_near;
     sensor_msgs::Image::ConstPtr image, mask;
     for (const rosbag::MessageInstance& m :
          rosbag::View(bag, rosbag::TopicQuery({"/thermal/image_raw", "/truth/thermal_person_ids", "/lidar/points"}))) {
@@ -102,7 +105,16 @@ int main(int argc, char** argv) {
         }
         std::vector<std::uint32_t> detected_truth;
         for (int index : out.detection.indices) detected_truth.push_back(truth[static_cast<std::size_t>(index)]);
-        lidar.add(det::scoreClusters(out.detection.labels, detected_truth, lidarPeople(points, truth, params)));
+        const std::vector<det::TruthPerson> people = lidarPeople(points, truth, params);
+        lidar.add(det::scoreClusters(out.detection.labels, detected_truth, people));
+        std::vector<std::uint32_t> near_labels, near_truth;
+        for (std::size_t k = 0; k < out.detection.labels.size(); ++k) {
+          const std::uint32_t label = out.detection.labels[k];
+          if (out.detection.people[label - 1].range_m > kScoredRangeM) continue;
+          near_labels.push_back(label);
+          near_truth.push_back(detected_truth[k]);
+        }
+        lidar_near.add(det::scoreClusters(near_labels, near_truth, people));
         continue;
       }
       if (m.getTopic() == "/thermal/image_raw") image = m.instantiate<sensor_msgs::Image>();
@@ -116,12 +128,13 @@ int main(int argc, char** argv) {
       mask.reset();
     }
     const auto print = [](const char* name, const det::DetectionScore& s) {
-      std::printf("%-8s frames %5ld  recall %.3f  precision %.3f  counts agree %.3f  (TP %ld, FP %ld, FN %ld, ignored %ld)\n",
+      std::printf("%-9s frames %5ld  recall %.3f  precision %.3f  counts agree %.3f  (TP %ld, FP %ld, FN %ld, ignored %ld)\n",
                   name, s.frames, s.recall(), s.precision(), s.countAgreement(), s.true_positives, s.false_positives,
                   s.false_negatives, s.ignored);
     };
     print("thermal", thermal);
     print("lidar", lidar);
+    print("lidar 20m", lidar_near);
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "score_raw_detections: error: %s\n", e.what());
