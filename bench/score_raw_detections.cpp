@@ -12,8 +12,12 @@
 // of people who are not scored are ignored, neither right nor wrong. For the LiDAR a second
 // line ("lidar 20m") also leaves out detections whose centre is beyond 20 m, where no person is
 // scored (the targets are for that region); the first line counts every detection.
-// Usage: score_raw_detections RAW.bag   (make_synthetic_bag --raw; prints one line per modality)
+// Usage: score_raw_detections RAW.bag [--config PARAMS.yaml]
+//   (make_synthetic_bag --raw; the detectors' keys of PARAMS.yaml, as calibrate_bag --config
+//   reads them, else the defaults; prints one line per modality)
 
+#include "thermal_lidar_calibration/app/detection_parameters.hpp"
+#include "thermal_lidar_calibration/app/parameter_source.hpp"
 #include "thermal_lidar_calibration/detection/detection_scoring.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 #include "thermal_lidar_calibration/ros/person_detection_adapter.hpp"
@@ -27,6 +31,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <string>
 
 namespace tlc = thermal_lidar_calibration;
 namespace det = tlc::detection;
@@ -83,12 +88,13 @@ std::vector<det::TruthPerson> lidarPeople(const std::vector<Eigen::Vector3f>& po
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::fprintf(stderr, "usage: score_raw_detections RAW.bag\n");
+  if (argc != 2 && !(argc == 4 && std::string(argv[2]) == "--config")) {
+    std::fprintf(stderr, "usage: score_raw_detections RAW.bag [--config PARAMS.yaml]\n");
     return 2;
   }
   try {
-    const tlc::DetectionParameters params;
+    const tlc::DetectionParameters params =
+        argc == 4 ? tlc::loadDetectionParameters(*tlc::makeYamlParameterSource(argv[3])) : tlc::DetectionParameters{};
     tlc::ros_io::PersonDetectionAdapter adapter(params);
     rosbag::Bag bag(argv[1], rosbag::bagmode::Read);
     det::DetectionScore thermal, lidar, lidar_near;
