@@ -119,7 +119,7 @@ void addLidarRows(ParameterTable<DetectionParameters>& t) {
   person.real("lidar_max_bottom_m", &LidarPersonConfig::max_bottom_m, closedRange(0, 10), "m",
               "a person's lowest point is at most this high (legs reach the ground)");
   person.real("lidar_min_width_m", &LidarPersonConfig::min_width_m, closedRange(0, 20), "m",
-              "narrowest person across the line of sight (side on, legs together, 20 m away: ~0.15; thinner posts fail here, person-wide ones the straight test)", "below lidar_max_width_m");
+              "narrowest person across the line of sight", "below lidar_max_width_m");
   person.real("lidar_max_width_m", &LidarPersonConfig::max_width_m, aboveRange(0, 20), "m",
               "widest person across the line of sight");
   person.real("lidar_max_depth_m", &LidarPersonConfig::max_depth_m, aboveRange(0, 20), "m",

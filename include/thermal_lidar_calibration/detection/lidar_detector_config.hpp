@@ -36,7 +36,7 @@ struct LidarPersonConfig {
   double min_height_m = 1.1;      // lidar_min_height_m: top of a person above the local ground, m; [0, 10], below lidar_max_height_m
   double max_height_m = 2.2;      // lidar_max_height_m: m; (0, 10]
   double max_bottom_m = 0.7;      // lidar_max_bottom_m: lowest point of a person above the ground (legs reach down), m; [0, 10]
-  double min_width_m = 0.15;      // lidar_min_width_m: extent across the line of sight (a person side on at 20 m measures ~0.15), m; [0, 20], below lidar_max_width_m
+  double min_width_m = 0.2;       // lidar_min_width_m: extent across the line of sight, m; [0, 20], below lidar_max_width_m
   double max_width_m = 1.0;       // lidar_max_width_m: m; (0, 20]
   double max_depth_m = 0.9;       // lidar_max_depth_m: extent along the line of sight, m; (0, 20]
   double min_height_to_width = 1.4;  // lidar_min_height_to_width: top height / width (a bush is squat); [0, 100]
