@@ -53,7 +53,7 @@ void addThermalRows(ParameterTable<DetectionParameters>& t) {
   th.real("thermal_min_aspect", &ThermalSegmenterConfig::min_aspect, aboveRange(0, 100), "",
           "bounding-box height / width at least (an animal side on is about as high as long; a person, even striding, 1.6 or more)");
   th.real("thermal_max_aspect", &ThermalSegmenterConfig::max_aspect, aboveRange(0, 100), "",
-          "bounding-box height / width at most, and length / width along the region's own axis (a person side on, legs together, reaches ~7; a pole, upright or slanted, is thinner)", "at least thermal_min_aspect");
+          "bounding-box height / width at most (a pole is thinner; a person side on with legs together reaches ~7 and is missed, which costs less than the posts a higher limit lets in)", "at least thermal_min_aspect");
   th.real("thermal_min_fill", &ThermalSegmenterConfig::min_fill, closedRange(0, 1), "",
           "region area / bounding-box area at least");
   th.real("thermal_max_fill", &ThermalSegmenterConfig::max_fill, closedRange(0, 1), "",

@@ -43,7 +43,7 @@ struct ThermalSegmenterConfig {
   double max_area_fraction = 0.1;   // thermal_max_area_fraction: of the image area (a person ~4 m from a FLIR A65); (0, 1]
   int min_height_px = 16;           // thermal_min_height_px: bounding-box height, px (a person ~85 m from a FLIR A65); integer [1, 100000]
   double min_aspect = 1.5;          // thermal_min_aspect: bounding-box height / width (animals side on ~1.1-1.3, people >= 1.6); (0, 100]
-  double max_aspect = 8.0;          // thermal_max_aspect: height / width (people side on up to ~7); (0, 100], >= thermal_min_aspect
+  double max_aspect = 5.5;          // thermal_max_aspect: height / width (people side on reach ~7, but so do sun-heated posts; see the parameter table); (0, 100], >= thermal_min_aspect
   double min_fill = 0.30;           // thermal_min_fill: area / bounding-box area; [0, 1]
   double max_fill = 0.95;           // thermal_max_fill: area / bounding-box area; [0, 1], >= thermal_min_fill
 
