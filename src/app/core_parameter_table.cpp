@@ -32,6 +32,9 @@ void addQualityRows(ParameterTable<CoreParameters>& t) {
   uncertainty.integer("uncertainty_resamples", &UncertaintyConfig::resamples, {50, 100000}, "",
                       "bootstrap resamples (each a local refinement from the result; parallel, "
                       "deterministic per seed)");
+  uncertainty.integer("uncertainty_block_pairs", &UncertaintyConfig::block_pairs, {1, 100000}, "",
+                      "pairs drawn together in runs of consecutive pairs (moving-block bootstrap: "
+                      "neighbouring pairs of a drive see the same people in nearly the same place); 1 = single pairs");
   coverage.real("coverage_near_far_split_m", &CoverageConfig::near_far_split_m, aboveRange(0, 1000), "m",
                 "a person nearer than this (LiDAR range) counts as near");
   verdict.real("quality_good_rotation_deg", &VerdictConfig::good_rotation_deg, aboveRange(0, 180), "deg",
