@@ -12,7 +12,7 @@ packages=(
   googletest libgtest-dev libbenchmark-dev python3-rosbag python3-yaml
   libpcl-dev libpcl-conversions-dev libnodeletlib-dev libnodeletlib-tools
   libdiagnostic-updater-dev libdiagnostic-msgs-dev libvisualization-msgs-dev
-  rviz
+  rviz tf2-tools
 )
 missing=()
 for p in "${packages[@]}"; do
