@@ -61,6 +61,9 @@ void addQualityRows(ParameterTable<CoreParameters>& t) {
                   "good: people stood in at least this many distinct places");
   verdict.integer("quality_usable_distinct_positions", &VerdictConfig::usable_distinct_positions, {0, 100000},
                   "", "usable: at least this many distinct places", "at most quality_good_distinct_positions");
+  verdict.real("quality_max_loss_px", &VerdictConfig::max_loss_px, closedRange(0, 1e6), "px",
+               "collect_more when the fit's loss on the pairs it used is above this (typical fits 0.03-0.2 px; "
+               "fits carried by mismatched pairs 2-25 px)");
 }
 
 // Issue 9: the drift watch's window and what counts as a change (core/drift_config.hpp says why

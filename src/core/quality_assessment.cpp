@@ -38,7 +38,7 @@ QualityAssessment assessQuality(const CameraModel& camera,
   if (config.uncertainty_enabled && used.size() >= 3) {
     q.uncertainty = estimateUncertainty(loss, result.extrinsic, used, config.uncertainty, callback);
   }
-  q.verdict = judgeQuality(q.coverage, q.uncertainty, config.verdict);
+  q.verdict = judgeQuality(q.coverage, q.uncertainty, config.verdict, result.loss);
   if (reference && !used.empty()) {
     q.reference = compareWithReference(loss, result.extrinsic, *reference, used, q.uncertainty);
   }

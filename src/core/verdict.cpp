@@ -143,6 +143,7 @@ void VerdictConfig::validate() const {
   requireRange("quality_min_people_far", min_people_far, 0, 1e6);
   requireRange("quality_good_distinct_positions", good_distinct_positions, 0, 1e6);
   requireRange("quality_usable_distinct_positions", usable_distinct_positions, 0, 1e6);
+  requireRange("quality_max_loss_px", max_loss_px, 0.0, 1e6);
   requireOrder("quality_good_rotation_deg", good_rotation_deg, "quality_usable_rotation_deg",
                usable_rotation_deg, true);
   requireOrder("quality_good_translation_cm", good_translation_cm, "quality_usable_translation_cm",
@@ -155,10 +156,19 @@ void VerdictConfig::validate() const {
 }
 
 VerdictReport judgeQuality(const Coverage& coverage, const std::optional<Uncertainty>& uncertainty,
-                           const VerdictConfig& config) {
+                           const VerdictConfig& config, std::optional<double> fit_loss_px) {
   config.validate();
   std::vector<Finding> findings;
   VerdictReport report;
+  if (fit_loss_px && !(*fit_loss_px <= config.max_loss_px)) {
+    // First: intervals and coverage say nothing useful about a fit that does not fit.
+    findings.push_back(
+        {Verdict::kCollectMore,
+         format("the fit leaves the people's points %.3g px off their masks on average (at most %.3g)",
+                *fit_loss_px, config.max_loss_px) +
+             ": the pairs disagree (the image and the cloud show different objects) or the search "
+             "failed; check the detections and lidar_min/max_azimuth_deg, then collect more"});
+  }
   judgeCoverage(coverage, config, findings, report.missing_regions);
   if (uncertainty && uncertainty->resamples >= 2) {
     judgeUncertainty(*uncertainty, config, findings);

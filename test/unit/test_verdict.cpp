@@ -115,3 +115,19 @@ TEST(Verdict, ThresholdsAreConfigurableAndChecked) {
   config.good_third_fraction = 0.5;
   EXPECT_THROW(judgeQuality(wellCovered(), tight(), config), std::invalid_argument);
 }
+
+TEST(Verdict, AFitThatLeavesThePointsOffTheirMasksIsCollectMoreWhateverTheIntervals) {
+  // A fit carried by mismatched pairs can have tight intervals and good coverage (the bootstrap
+  // refines from it and stays there); its loss gives it away (measured 2.6-24 px; typical
+  // 0.03-0.2 px).
+  const VerdictReport bad = judgeQuality(wellCovered(), tight(), VerdictConfig{}, 2.64);
+  EXPECT_EQ(bad.verdict, Verdict::kCollectMore);
+  ASSERT_FALSE(bad.reasons.empty());
+  EXPECT_NE(bad.reasons.front().find("2.64 px off their masks"), std::string::npos) << bad.reasons.front();
+  EXPECT_EQ(judgeQuality(wellCovered(), tight(), VerdictConfig{}, 0.05).verdict, Verdict::kGood);
+  VerdictConfig lax;
+  lax.max_loss_px = 5.0;
+  EXPECT_EQ(judgeQuality(wellCovered(), tight(), lax, 2.64).verdict, Verdict::kGood);
+  lax.max_loss_px = -1.0;
+  EXPECT_THROW(judgeQuality(wellCovered(), tight(), lax, 0.05), std::invalid_argument);
+}

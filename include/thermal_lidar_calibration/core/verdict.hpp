@@ -35,6 +35,10 @@ struct VerdictConfig {
   // Distinct places people stood (relative to the sensors).
   int good_distinct_positions = 15;
   int usable_distinct_positions = 8;
+  // The fit's Eq. 3 loss on the pairs it used, px: above this the people's points lie off their
+  // masks (a fit of 0.03-0.2 px is typical; fits carried by mismatched pairs or a failed search
+  // measured 2.6-24 px), whatever the intervals say.
+  double max_loss_px = 1.0;
   void validate() const;  // throws std::invalid_argument naming the key and range
 };
 
@@ -47,8 +51,9 @@ struct VerdictReport {
 };
 
 // `uncertainty` may be absent (while collecting, before a fit): then only coverage and pairs
-// decide, and the verdict is at best usable.
+// decide, and the verdict is at best usable. `fit_loss_px`: the fit's Eq. 3 loss on the pairs it
+// used, when there is a fit.
 VerdictReport judgeQuality(const Coverage& coverage, const std::optional<Uncertainty>& uncertainty,
-                           const VerdictConfig& config);
+                           const VerdictConfig& config, std::optional<double> fit_loss_px = std::nullopt);
 
 }  // namespace thermal_lidar_calibration
