@@ -61,7 +61,8 @@ void PersonSizeModel::refit() {
   std::vector<double> sorted_feet = feet;
   std::sort(sorted_feet.begin(), sorted_feet.end());
   const double highest_feet = sorted_feet[sorted_feet.size() / 20];
-  const double span = kMaxHorizonHeights * median(heights);
+  const double median_height = median(heights);
+  const double span = kMaxHorizonHeights * median_height;
   const double step = span / kHorizonCandidates;
   std::vector<double> log_ratio;
   log_ratio.reserve(samples_.size());
@@ -104,7 +105,7 @@ void PersonSizeModel::refit() {
   if (band_feet.empty()) return;
   std::sort(band_feet.begin(), band_feet.end());
   const double spread = band_feet[band_feet.size() * 9 / 10] - band_feet[band_feet.size() / 10];
-  if (spread < 0.5 * median(heights)) return;
+  if (spread < 0.5 * median_height) return;
   fit_ = best;
 }
 
