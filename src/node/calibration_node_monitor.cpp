@@ -38,6 +38,11 @@ LatestDrift latestDrift(const DriftWatchWorker::Snapshot& s) {
   return {};
 }
 
+// A confirmed change with a new extrinsic to take (~accept_update).
+bool updateAvailable(const DriftWatchWorker::Snapshot& s) {
+  return s.candidate.has_value() && s.state == DriftState::kError;
+}
+
 }  // namespace
 
 void CalibrationNode::startMonitoring(const Extrinsic& reference, const std::string& origin) {
@@ -186,7 +191,7 @@ void CalibrationNode::fillDriftStatus(CalibrationStatus& msg) const {
   }
   msg.drift_loss_reference = latest.loss_reference;
   msg.drift_loss_fit = latest.loss_fit;
-  msg.drift_update_available = s.candidate.has_value() && s.state == DriftState::kError;
+  msg.drift_update_available = updateAvailable(s);
   msg.drift_updates = static_cast<std::uint32_t>(drift_history_.size());
   for (int i = 0; i < 3; ++i) {
     msg.rotation_vector[i] = s.reference.rotation_vector[i];
@@ -215,8 +220,7 @@ void CalibrationNode::diagnoseDrift(NodeDiagnostics::Status& status) const {
   status.add("pairs seen", s.pairs_seen);
   status.add("pairs in window", s.pairs_in_window);
   status.add("tests", s.tests);
-  const bool update_available = s.candidate.has_value() && s.state == DriftState::kError;
-  status.add("update available", update_available ? "yes: ~accept_update" : "no");
+  status.add("update available", updateAvailable(s) ? "yes: ~accept_update" : "no");
   status.add("updates accepted", drift_history_.size());
   if (s.candidates_refused > 0) {
     status.add("new fits refused (beyond monitor_max_update_*)", s.candidates_refused);
