@@ -12,13 +12,9 @@ prepare_workspace
 frames="${1:-600}"
 out="${TLC_ACCURACY_OUT:-$repo/out/live_cpu}"
 mkdir -p "$out"
-export ROS_HOME="$out/ros_home" ROS_MASTER_URI="http://localhost:11399"
-mkdir -p "$ROS_HOME"
 "$bin/make_synthetic_bag" --raw --frames "$frames" --seed 1 --output "$out/raw.bag" --truth "$out/truth.yaml" >/dev/null 2>&1
-roscore -p 11399 >"$out/roscore.log" 2>&1 &
-core=$!
-trap 'kill $launch $core 2>/dev/null || true; wait 2>/dev/null || true' EXIT
-sleep 3
+start_private_roscore "$out" 11399
+trap 'kill $launch $roscore_pid 2>/dev/null || true; wait 2>/dev/null || true' EXIT
 rosparam set /use_sim_time true
 roslaunch thermal_lidar_calibration calibration.launch detect:=true image_topic:=/thermal/image_raw \
   points_topic:=/lidar/points mask_topic:=/detected/human_mask clusters_topic:=/detected/human_clusters \
@@ -26,13 +22,12 @@ roslaunch thermal_lidar_calibration calibration.launch detect:=true image_topic:
   >"$out/launch.log" 2>&1 &
 launch=$!
 sleep 6
-ticks() { awk '{print $14 + $15}' "/proc/$1/stat"; }
 manager=$(pgrep -f "__name:=person_detection_manager" | head -n 1)
 node=$(pgrep -f "__name:=calibration_node" | head -n 1)
 hz=$(getconf CLK_TCK)
-m0=$(ticks "$manager"); n0=$(ticks "$node"); t0=$(date +%s.%N)
+m0=$(cpu_ticks "$manager"); n0=$(cpu_ticks "$node"); t0=$(date +%s.%N)
 rosbag play --clock -q -r 3 "$out/raw.bag"
-m1=$(ticks "$manager"); n1=$(ticks "$node"); t1=$(date +%s.%N)
+m1=$(cpu_ticks "$manager"); n1=$(cpu_ticks "$node"); t1=$(date +%s.%N)
 awk -v m="$((m1 - m0))" -v n="$((n1 - n0))" -v t0="$t0" -v t1="$t1" -v hz="$hz" -v f="$frames" 'BEGIN {
   s = t1 - t0
   printf "%d frames at 3x (30 Hz thermal + 30 Hz LiDAR) in %.1f s:\n", f, s

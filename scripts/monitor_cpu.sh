@@ -12,14 +12,10 @@ prepare_workspace
 frames="${1:-1200}"
 out="${TLC_ACCURACY_OUT:-$repo/out/monitor_cpu}"
 mkdir -p "$out"
-export ROS_HOME="$out/ros_home" ROS_MASTER_URI="http://localhost:11398"
-mkdir -p "$ROS_HOME"
 "$bin/make_synthetic_bag" --frames "$frames" --seed 3 --noise realistic --output "$out/drive.bag" \
   --truth "$out/truth.yaml" >/dev/null 2>&1
-roscore -p 11398 >"$out/roscore.log" 2>&1 &
-core=$!
-trap 'kill $node_pid $core 2>/dev/null || true; wait 2>/dev/null || true' EXIT
-sleep 3
+start_private_roscore "$out" 11398
+trap 'kill $node_pid $roscore_pid 2>/dev/null || true; wait 2>/dev/null || true' EXIT
 rosparam set /use_sim_time true
 rosparam load "$repo/config/default.yaml" /calibration_node
 rosparam set /calibration_node/mode monitor
@@ -28,11 +24,10 @@ rosparam set /calibration_node/output_file "$out/result.yaml"
 "$bin/calibration_node" >"$out/node.log" 2>&1 &
 node_pid=$!
 sleep 3
-ticks() { awk '{print $14 + $15}' "/proc/$1/stat"; }
 hz=$(getconf CLK_TCK)
-n0=$(ticks "$node_pid"); t0=$(date +%s.%N)
+n0=$(cpu_ticks "$node_pid"); t0=$(date +%s.%N)
 rosbag play --clock -q "$out/drive.bag"
-n1=$(ticks "$node_pid"); t1=$(date +%s.%N)
+n1=$(cpu_ticks "$node_pid"); t1=$(date +%s.%N)
 sleep 1
 status="$(timeout 10 rostopic echo -n 1 /calibration_node/status)"
 tests=$(echo "$status" | awk '/^drift_tests:/ {print $2}')

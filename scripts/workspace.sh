@@ -3,6 +3,7 @@
 # the workspace path in $ws, the package's executables in $bin and the checkout in $repo.
 #   prepare_workspace            build the package
 #   prepare_workspace --tests    also build the tests
+# and, for the CPU measurements, start_private_roscore and cpu_ticks (below).
 # Debian's ROS tools need Debian's python3, not a pyenv one that may be first on PATH.
 export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -19,3 +20,17 @@ prepare_workspace() {
   source "$ws/devel/setup.bash"
   set -u
 }
+
+# For the CPU measurements: a roscore of the script's own on PORT (so it never meets another
+# master), ROS_HOME and its log under DIR; its PID in $roscore_pid for the caller's exit trap.
+start_private_roscore() {  # DIR PORT
+  export ROS_HOME="$1/ros_home" ROS_MASTER_URI="http://localhost:$2"
+  mkdir -p "$ROS_HOME"
+  roscore -p "$2" >"$1/roscore.log" 2>&1 &
+  # shellcheck disable=SC2034  # for the caller's trap
+  roscore_pid=$!
+  sleep 3
+}
+
+# CPU time a process has used so far, in clock ticks (user + system; $(getconf CLK_TCK) a second).
+cpu_ticks() { awk '{print $14 + $15}' "/proc/$1/stat"; }
