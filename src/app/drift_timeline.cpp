@@ -35,15 +35,18 @@ DriftTimeline watchDrift(const CameraModel& camera, const std::vector<Calibratio
 
 void writeDriftCsv(const std::string& path, const DriftTimeline& timeline) {
   std::ofstream out(path);
-  // pairs_seen (kept pairs given to the watch so far) last: the INTERFACE's columns come first.
+  // The INTERFACE's columns come first; then pairs_seen (kept pairs given to the watch so far)
+  // and each test's evidence, so a user can see which part of the test held or failed.
   out << "stamp,pairs_in_window,state,rotation_change_deg,translation_change_cm,loss_reference,"
-         "loss_fit,pairs_seen\n";
-  char row[256];
+         "loss_fit,pairs_seen,p_value,held_out_pairs,image_shift_px,pairs_used,changed\n";
+  char row[320];
   for (const DriftRecord& r : timeline.records) {
-    std::snprintf(row, sizeof(row), "%.3f,%zu,%s,%.4f,%.3f,%.5f,%.5f,%llu\n", r.stamp_s,
-                  r.test.pairs_in_window, toString(r.state), r.test.change.angle_deg,
+    std::snprintf(row, sizeof(row), "%.3f,%zu,%s,%.4f,%.3f,%.5f,%.5f,%llu,%.3g,%zu,%.3f,%zu,%d\n",
+                  r.stamp_s, r.test.pairs_in_window, toString(r.state), r.test.change.angle_deg,
                   r.test.change.distance_cm, r.test.loss_reference, r.test.loss_fit,
-                  static_cast<unsigned long long>(r.pairs_seen));
+                  static_cast<unsigned long long>(r.pairs_seen), r.test.p_value,
+                  r.test.held_out_pairs, r.test.image_shift_px, r.test.pairs_used,
+                  r.test.changed() ? 1 : 0);
     out << row;
   }
   out.close();

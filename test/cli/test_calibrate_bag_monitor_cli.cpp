@@ -15,6 +15,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #ifndef CALIBRATE_BAG_EXE
 #error "CALIBRATE_BAG_EXE must be defined to the calibrate_bag binary"
@@ -91,11 +92,22 @@ TEST_F(CalibrateBagMonitorCli, ABumpIsConfirmedAfterItHappensWithTheTimelineBesi
   std::ifstream csv(dir_ + "/bump.drift.csv");
   std::string header, row;
   std::getline(csv, header);
-  EXPECT_EQ(header, "stamp,pairs_in_window,state,rotation_change_deg,translation_change_cm,loss_reference,loss_fit,pairs_seen");
+  EXPECT_EQ(header, "stamp,pairs_in_window,state,rotation_change_deg,translation_change_cm,loss_reference,loss_fit,pairs_seen,p_value,held_out_pairs,image_shift_px,pairs_used,changed");
   int rows = 0, errors = 0;
   while (std::getline(csv, row)) {
     ++rows;
-    errors += row.find(",ERROR,") != std::string::npos;
+    const bool error = row.find(",ERROR,") != std::string::npos;
+    errors += error;
+    // The evidence columns: the first ERROR row is a changed test (ERROR only follows changed
+    // tests), and its p-value is below monitor_significance.
+    if (error && errors == 1) {
+      std::vector<std::string> cells;
+      std::stringstream fields(row);
+      for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
+      ASSERT_EQ(cells.size(), 13u) << row;
+      EXPECT_EQ(cells[12], "1") << row;
+      EXPECT_LT(std::stod(cells[8]), 0.01) << row;
+    }
   }
   EXPECT_GT(rows, 5);
   EXPECT_GT(errors, 0);
