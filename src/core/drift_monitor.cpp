@@ -111,7 +111,13 @@ std::optional<DriftRecord> DriftMonitor::addPair(CalibrationPair pair) {
 }
 
 void DriftMonitor::locateChange(const Extrinsic& fit) {
-  const std::vector<CalibrationPair> held = lastPairs(held_.size());
+  // Only pairs since the last accepted change: older ones show a rig that is gone. They can
+  // fit the new pose too (a bracket that seats back), and a split among them would hand the
+  // new fit the pairs of the rig in between.
+  std::size_t since_accepted = 0;
+  for (const Held& h : held_) since_accepted += h.seq >= accepted_change_seq_ ? 1 : 0;
+  if (since_accepted == 0) return;
+  const std::vector<CalibrationPair> held = lastPairs(since_accepted);
   const LossEvaluator bilinear(
       camera_, held,
       LossConfig{calibration_.behind_camera_penalty_c1, PixelRule::kBilinear});
@@ -176,6 +182,7 @@ std::optional<DriftUpdate> DriftMonitor::acceptCandidate() {
   if (!candidate_) return std::nullopt;
   DriftUpdate update{reference_, *candidate_};
   reference_ = candidate_->extrinsic;
+  if (change_seq_) accepted_change_seq_ = *change_seq_;
   settling_ = !candidate_->complete;
   if (!settling_) change_seq_.reset();
   candidate_.reset();

@@ -112,6 +112,7 @@ class DriftMonitor {
   std::uint64_t next_seq_ = 0;
   int since_test_ = 0;
   std::optional<std::uint64_t> change_seq_;  // first pair after the located change
+  std::uint64_t accepted_change_seq_ = 0;     // first pair after the last accepted change
   bool settling_ = false;   // accepted early: still fitting the pairs since the change
   std::optional<DriftCandidate> candidate_;
   std::optional<DriftRecord> last_record_;
