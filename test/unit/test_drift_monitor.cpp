@@ -90,6 +90,23 @@ std::vector<CalibrationPair> concatenated(std::vector<CalibrationPair> a,
   return a;
 }
 
+CalibrationConfig singleThreaded() {
+  CalibrationConfig calibration;
+  calibration.num_threads = 1;
+  return calibration;
+}
+
+// Feeds `stream` to `m`, taking every update as soon as one is ready (~auto_update).
+std::vector<DriftUpdate> acceptingEveryUpdate(DriftMonitor& m,
+                                              const std::vector<CalibrationPair>& stream) {
+  std::vector<DriftUpdate> updates;
+  for (const CalibrationPair& p : stream) {
+    m.addPair(p);
+    if (m.updateReady()) updates.push_back(*m.acceptCandidate());
+  }
+  return updates;
+}
+
 }  // namespace
 
 TEST(DriftMonitor, StaysOkOnAStableRigCleanAndNoisy) {
@@ -148,14 +165,8 @@ TEST(DriftMonitor, AcceptingAnEarlyUpdateOffersTheFinalOneLater) {
                                    pairsSeenWith(after, 51, 52, false));
   DriftConfig config;
   config.update_pairs = 40;
-  CalibrationConfig calibration;
-  calibration.num_threads = 1;
-  DriftMonitor m(fieldsafeCamera(), before, config, calibration);
-  std::vector<DriftUpdate> updates;
-  for (const CalibrationPair& p : stream) {
-    m.addPair(p);
-    if (m.updateReady()) updates.push_back(*m.acceptCandidate());
-  }
+  DriftMonitor m(fieldsafeCamera(), before, config, singleThreaded());
+  const std::vector<DriftUpdate> updates = acceptingEveryUpdate(m, stream);
   ASSERT_EQ(updates.size(), 2u);
   EXPECT_FALSE(updates[0].accepted.complete);  // at the moment of confirmation
   EXPECT_TRUE(updates[1].accepted.complete);   // on update_pairs pairs after the change
@@ -182,14 +193,8 @@ TEST(DriftMonitor, ALaterChangeIsPlacedAfterTheAcceptedOne) {
                                    seated_back);
   DriftConfig config;
   config.update_pairs = 100;  // keeps the pairs from before the first change in memory
-  CalibrationConfig calibration;
-  calibration.num_threads = 1;
-  DriftMonitor m(fieldsafeCamera(), before, config, calibration);
-  std::vector<DriftUpdate> updates;
-  for (const CalibrationPair& p : stream) {
-    m.addPair(p);
-    if (m.updateReady()) updates.push_back(*m.acceptCandidate());
-  }
+  DriftMonitor m(fieldsafeCamera(), before, config, singleThreaded());
+  const std::vector<DriftUpdate> updates = acceptingEveryUpdate(m, stream);
   ASSERT_GE(updates.size(), 2u);
   const double second_change_s = 100.0 + 60.0 + 30.0;  // concatenated() stamps pair i at 100 + i
   EXPECT_NEAR(updates[0].accepted.change_stamp_s, 160.0, 2.0);
