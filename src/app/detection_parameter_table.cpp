@@ -53,11 +53,17 @@ void addThermalRows(ParameterTable<DetectionParameters>& t) {
   th.real("thermal_min_aspect", &ThermalSegmenterConfig::min_aspect, aboveRange(0, 100), "",
           "bounding-box height / width at least (an animal side on is about as high as long; a person, even striding, 1.6 or more)");
   th.real("thermal_max_aspect", &ThermalSegmenterConfig::max_aspect, aboveRange(0, 100), "",
-          "bounding-box height / width at most (a pole is thinner; a person side on with legs together reaches ~7 and is missed, which costs less than the posts a higher limit lets in)", "at least thermal_min_aspect");
+          "bounding-box height / width at most (a pole is thinner; a person side on with legs together reaches ~7)", "at least thermal_min_aspect");
   th.real("thermal_min_fill", &ThermalSegmenterConfig::min_fill, closedRange(0, 1), "",
           "region area / bounding-box area at least");
   th.real("thermal_max_fill", &ThermalSegmenterConfig::max_fill, closedRange(0, 1), "",
           "region area / bounding-box area at most (a warm rectangle is not a person)", "at least thermal_min_fill");
+  th.real("thermal_straight_min_aspect", &ThermalSegmenterConfig::straight_min_aspect, aboveRange(0, 100), "",
+          "a region at least this slender (height / width) is a post when its sides are straight (thermal_straight_ratio)");
+  th.real("thermal_straight_ratio", &ThermalSegmenterConfig::straight_ratio, aboveRange(0, 1), "",
+          "straight sides: the median row extent of the legs zone (10-40 % of the height) over the torso zone's "
+          "(50-80 %) within [r, 1/r] and no row between shoulders and head (78-92 %) narrower than r times the torso, "
+          "or at most 1/(1-r) px wide (too narrow to tell); a person has legs ~0.5-0.8 of the torso or a neck ~0.4");
   th.real("thermal_split_max_aspect", &ThermalSegmenterConfig::split_max_aspect, aboveRange(0, 100), "",
           "a region whose height / width is below this is searched for people side by side");
   th.real("thermal_head_dip_fraction", &ThermalSegmenterConfig::head_dip_fraction, aboveRange(0, 1), "",

@@ -128,7 +128,7 @@ void applySizeCheck(ThermalSegmentation& segmentation, PersonSizeModel& model) {
   for (const ThermalPerson& p : segmentation.people) {
     boxes.push_back(p.bbox);
     if (model.tooShortForItsRange(p.bbox)) {
-      segmentation.rejected.push_back({p.bbox, p.area_px, "too_short_for_range"});
+      segmentation.rejected.push_back({p.bbox, p.area_px, "too_short_for_range", p.leg_to_torso_width});
       continue;
     }
     kept.push_back(p);

@@ -148,6 +148,7 @@ ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const 
     region.area_px = stats.at<int>(k, cv::CC_STAT_AREA);
     region.centroid = cv::Point2d(centroids.at<double>(k, 0), centroids.at<double>(k, 1));
     if (region.area_px < c.min_area_px) continue;  // specks: nothing to split or report
+    region.zones = measureZoneWidths(labels, region);
     const std::string failure = shapeFailure(region, c, max_area);
     // A region wider than one person for its height may hold people side by side.
     const double aspect = static_cast<double>(region.bbox.height) / region.bbox.width;
@@ -159,7 +160,7 @@ ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const 
           if (part_failure.empty()) {
             kept.push_back(part);
           } else if (part_failure != "too_small") {
-            result.rejected.push_back({part.bbox, part.area_px, part_failure});
+            result.rejected.push_back({part.bbox, part.area_px, part_failure, part.zones.legsOverTorso()});
           }
         }
         continue;
@@ -168,7 +169,7 @@ ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const 
     if (failure.empty()) {
       kept.push_back(region);
     } else {
-      result.rejected.push_back({region.bbox, region.area_px, failure});
+      result.rejected.push_back({region.bbox, region.area_px, failure, region.zones.legsOverTorso()});
     }
   }
   // Ids left to right (then top to bottom), at most 255 in an 8-bit mask.
@@ -184,6 +185,7 @@ ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const 
     person.area_px = region.area_px;
     person.centroid = region.centroid;
     person.fill = static_cast<double>(person.area_px) / person.bbox.area();
+    person.leg_to_torso_width = region.zones.legsOverTorso();
     const auto id = static_cast<std::uint8_t>(person.id);
     // The box of a part covers only its columns, so painting the label inside it paints the part.
     const double mean = is16 ? paintComponent<std::uint16_t>(image, labels, region.label, region.bbox, id, &result.mask)

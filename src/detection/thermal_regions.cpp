@@ -1,9 +1,59 @@
 #include "thermal_regions.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace thermal_lidar_calibration {
 namespace detection {
+
+namespace {
+
+// The row extents of `label` over rows [y0, y1) of `box` (rows without a pixel skipped).
+std::vector<int> rowExtents(const cv::Mat& labels, int label, const cv::Rect& box, int y0, int y1) {
+  std::vector<int> extents;
+  extents.reserve(static_cast<std::size_t>(std::max(0, y1 - y0)));
+  for (int y = y0; y < y1; ++y) {
+    const int* row = labels.ptr<int>(y);
+    int left = -1, right = -1;
+    for (int x = box.x; x < box.x + box.width; ++x) {
+      if (row[x] != label) continue;
+      if (left < 0) left = x;
+      right = x;
+    }
+    if (left >= 0) extents.push_back(right - left + 1);
+  }
+  return extents;
+}
+
+double median(std::vector<int> values) {
+  if (values.empty()) return 0.0;
+  const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), mid, values.end());
+  return *mid;
+}
+
+}  // namespace
+
+bool ZoneWidths::straight(double r) const {
+  if (legs_px <= 0.0 || torso_px <= 0.0) return false;
+  if (std::max(legs_px, torso_px) <= 1.0 / (1.0 - r)) return true;
+  const double ratio = legs_px / torso_px;
+  return ratio >= r && ratio <= 1.0 / r && neck_px >= r * torso_px;
+}
+
+ZoneWidths measureZoneWidths(const cv::Mat& labels, const WarmRegion& r) {
+  const cv::Rect& b = r.bbox;
+  const int bottom = b.y + b.height;  // one past the feet row
+  auto row_at = [&](double fraction_above_bottom) {
+    return bottom - static_cast<int>(std::lround(fraction_above_bottom * b.height));
+  };
+  ZoneWidths zones;
+  zones.legs_px = median(rowExtents(labels, r.label, b, row_at(0.4), row_at(0.1)));
+  zones.torso_px = median(rowExtents(labels, r.label, b, row_at(0.8), row_at(0.5)));
+  const std::vector<int> neck = rowExtents(labels, r.label, b, row_at(0.92), row_at(0.78));
+  zones.neck_px = neck.empty() ? 0.0 : *std::min_element(neck.begin(), neck.end());
+  return zones;
+}
 
 std::string shapeFailure(const WarmRegion& r, const ThermalSegmenterConfig& c, double max_area_px) {
   const int w = r.bbox.width, h = r.bbox.height;
@@ -16,6 +66,7 @@ std::string shapeFailure(const WarmRegion& r, const ThermalSegmenterConfig& c, d
   if (aspect > c.max_aspect) return "too_thin";
   if (fill < c.min_fill) return "too_sparse";
   if (fill > c.max_fill) return "too_full";
+  if (aspect >= c.straight_min_aspect && r.zones.straight(c.straight_ratio)) return "straight";
   return "";
 }
 

@@ -13,16 +13,40 @@
 namespace thermal_lidar_calibration {
 namespace detection {
 
+// Row extents (leftmost to rightmost pixel of the region in a row) of a region's zones, by height
+// above its bottom row: the median over the legs zone (10-40 %) and the torso zone (50-80 %),
+// and the narrowest row of the neck zone (78-92 %, between shoulders and head), px; 0 where a
+// zone has no pixel or was not measured.
+struct ZoneWidths {
+  double legs_px = 0;
+  double torso_px = 0;
+  double neck_px = 0;
+  double legsOverTorso() const { return legs_px > 0 && torso_px > 0 ? legs_px / torso_px : 0.0; }
+  // A post's shape: measured, the legs as wide as the torso (legs / torso in [r, 1 / r]) and no
+  // neck narrower than r times the torso; or too narrow to tell, at most 1 / (1 - r) px wide,
+  // where one pixel less is already within the ratio (3 px against 4 says nothing).
+  bool straight(double r) const;
+};
+
 // A connected component of `labels` (value `label`), or the part of it inside `bbox`'s columns.
 struct WarmRegion {
   int label = 0;
   cv::Rect bbox;
   int area_px = 0;
   cv::Point2d centroid;
+  // Measured for a whole component only: a part of a split one has cut columns that say nothing
+  // about its sides (a person half behind another loses an arm to the cut).
+  ZoneWidths zones;
 };
 
-// The first shape filter a region fails, or "" for a person ("too_small" for specks).
+// The first shape filter a region fails, or "" for a person ("too_small" for specks); reads
+// region.zones for a slender region's straight-sides test.
 std::string shapeFailure(const WarmRegion& region, const ThermalSegmenterConfig& config, double max_area_px);
+
+// The zone widths of the pixels of `region.label` in `region.bbox`: a post's are equal; a
+// person's legs together are ~0.5-0.8 of the torso (striding across the view, wider) and the neck
+// ~0.4.
+ZoneWidths measureZoneWidths(const cv::Mat& labels, const WarmRegion& region);
 
 // Statistics of the pixels of `label` in the columns [x0, x1) of `bbox` (rows of bbox only).
 WarmRegion measureColumns(const cv::Mat& labels, int label, const cv::Rect& bbox, int x0, int x1);

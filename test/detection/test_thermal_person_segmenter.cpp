@@ -128,6 +128,48 @@ TEST(ThermalPersonSegmenter, SunHeatedPoleAndGroundFailTheShapeFilters) {
   EXPECT_TRUE(ThermalPersonSegmenter().segment(image).people.empty());
 }
 
+TEST(ThermalPersonSegmenter, PersonSideOnWithLegsTogetherIsAPersonAPostOfTheSameSlenderShapeIsNot) {
+  cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 21);
+  test_support::drawPersonSideOn(image, 200, 150, 140, 307.0, 301.0);  // ~20 px wide: height / width ~7
+  // The same size with straight sides, leaning 3 deg (upright, it fills its box and fails
+  // thermal_max_fill; leaning, it does not).
+  test_support::drawPost(image, 420, 290, 20, 140, 3.0, 302.0);
+  const auto result = ThermalPersonSegmenter().segment(image);
+  ASSERT_EQ(result.people.size(), 1u);
+  EXPECT_NEAR(result.people[0].centroid.x, 200, 2);
+  const double aspect = static_cast<double>(result.people[0].bbox.height) / result.people[0].bbox.width;
+  EXPECT_GT(aspect, 6.0);  // slenderer than the old thermal_max_aspect (5.5) let in
+  ASSERT_EQ(result.rejected.size(), 1u);
+  EXPECT_EQ(result.rejected[0].reason, "straight");
+}
+
+TEST(ThermalPersonSegmenter, LeaningPostsAreStraightButAPersonLeaningLikeThemIsNot) {
+  // A rolled camera leans everything: the row extents of a post stay equal top to bottom.
+  for (const double tilt : {-6.0, 4.0, 8.0}) {
+    SCOPED_TRACE(tilt);
+    cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 22);
+    test_support::drawPost(image, 300, 300, 16, 130, tilt, 302.0);
+    const auto result = ThermalPersonSegmenter().segment(image);
+    EXPECT_TRUE(result.people.empty());
+    ASSERT_EQ(result.rejected.size(), 1u);
+    EXPECT_EQ(result.rejected[0].reason, "straight");
+  }
+  cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 23);
+  test_support::drawPersonSideOn(image, 300, 160, 140, 307.0, 301.0);
+  cv::Mat leaned;
+  cv::warpAffine(image, leaned, cv::getRotationMatrix2D(cv::Point2f(300, 230), 5.0, 1.0), image.size(),
+                 cv::INTER_NEAREST, cv::BORDER_REPLICATE);
+  EXPECT_EQ(ThermalPersonSegmenter().segment(leaned).people.size(), 1u);
+}
+
+TEST(ThermalPersonSegmenter, StraightSidesTestCanBeTurnedOff) {
+  cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 24);
+  test_support::drawPost(image, 420, 290, 20, 140, 3.0, 302.0);
+  ThermalSegmenterConfig off;
+  off.straight_min_aspect = 100.0;
+  EXPECT_EQ(ThermalPersonSegmenter(off).segment(image).people.size(), 1u);
+}
+
 TEST(ThermalPersonSegmenter, RadiometricBandNeedsBodyTemperatureRelativeModeDoesNot) {
   // A person-shaped region 10 K above a cold scene but below the body band (a cold night
   // scene seen by a camera whose offset is wrong, or a warm object that is not a person).

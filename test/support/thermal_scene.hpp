@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <vector>
 
 namespace thermal_lidar_calibration {
 namespace test_support {
@@ -56,6 +57,38 @@ inline void drawPerson(cv::Mat& image, int cx, int top, int height_px, double sk
   const int hand = std::max(1, static_cast<int>(0.03 * h));
   cv::circle(image, cv::Point(cx - torso_axes.width - hand, hip), hand, skin, cv::FILLED);
   cv::circle(image, cv::Point(cx + torso_axes.width + hand, hip), hand, skin, cv::FILLED);
+}
+
+// A person `height_px` tall seen side on with the legs together (the body model's proportions:
+// torso 0.24 m deep, legs 0.13 m, head 0.2 m of a 1.75 m adult): height / width ~7, as slender
+// as a post, but the legs are about half as wide as the torso.
+inline void drawPersonSideOn(cv::Mat& image, int cx, int top, int height_px, double skin_k, double clothing_k) {
+  const double h = height_px;
+  const cv::Scalar skin(std::round(countsOf(skin_k))), cloth(std::round(countsOf(clothing_k)));
+  const int head_r = static_cast<int>(std::round(0.065 * h));
+  cv::ellipse(image, cv::Point(cx, top + head_r), cv::Size(static_cast<int>(std::round(0.057 * h)), head_r), 0, 0,
+              360, skin, cv::FILLED);
+  const int hip = top + static_cast<int>(0.48 * h);
+  cv::ellipse(image, cv::Point(cx, top + static_cast<int>(0.33 * h)),
+              cv::Size(static_cast<int>(std::round(0.069 * h)), static_cast<int>(0.2 * h)), 0, 0, 360, cloth,
+              cv::FILLED);
+  const int leg_half = std::max(1, static_cast<int>(std::round(0.037 * h)));
+  cv::rectangle(image, cv::Rect(cx - leg_half, hip, 2 * leg_half + 1, top + height_px - hip), cloth, cv::FILLED);
+}
+
+// A post `width_px` wide and `height_px` tall standing at (cx, bottom), leaning `tilt_deg` in the
+// image (a vertical post seen by a rolled camera).
+inline void drawPost(cv::Mat& image, int cx, int bottom, int width_px, int height_px, double tilt_deg,
+                     double kelvin) {
+  const double a = tilt_deg * M_PI / 180.0;
+  const cv::Point2d up(std::sin(a), -std::cos(a)), across(std::cos(a), std::sin(a));
+  const cv::Point2d base(cx, bottom);
+  const double half = 0.5 * width_px;
+  const cv::Point2d corners[4] = {base - half * across, base + half * across,
+                                  base + half * across + height_px * up, base - half * across + height_px * up};
+  std::vector<cv::Point> poly;
+  for (const auto& c : corners) poly.emplace_back(static_cast<int>(std::lround(c.x)), static_cast<int>(std::lround(c.y)));
+  cv::fillConvexPoly(image, poly, cv::Scalar(std::round(countsOf(kelvin))));
 }
 
 // A four-legged animal at body temperature: a horizontal body ellipse on short legs.

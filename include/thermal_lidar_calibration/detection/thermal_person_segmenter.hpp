@@ -24,14 +24,19 @@ struct ThermalPerson {
   cv::Point2d centroid;    // pixels
   double fill = 0.0;       // area / bounding-box area
   double mean_level = 0.0; // mean pixel value inside the mask: kelvin if radiometric, else raw
+  // Median row extent of the legs zone (10-40 % of the height above the bottom) over the torso
+  // zone's (50-80 %); 0 when a zone is empty or the region is a part of a split one (not
+  // measured: thermal_straight_ratio is not applied).
+  double leg_to_torso_width = 0.0;
 };
 
 // A warm region at least min_area_px large that failed a shape filter, for tuning.
 struct RejectedRegion {
   cv::Rect bbox;
   int area_px = 0;
-  std::string reason;  // "too_large", "too_short", "too_squat", "too_thin", "too_sparse", "too_full",
+  std::string reason;  // "too_large", "too_short", "too_squat", "too_thin", "too_sparse", "too_full", "straight",
                       // "too_short_for_range" (person_size_model.hpp)
+  double leg_to_torso_width = 0.0;  // as ThermalPerson's
 };
 
 struct ThermalSegmentation {

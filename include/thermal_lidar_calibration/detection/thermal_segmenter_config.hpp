@@ -43,9 +43,17 @@ struct ThermalSegmenterConfig {
   double max_area_fraction = 0.1;   // thermal_max_area_fraction: of the image area (a person ~4 m from a FLIR A65); (0, 1]
   int min_height_px = 16;           // thermal_min_height_px: bounding-box height, px (a person ~85 m from a FLIR A65); integer [1, 100000]
   double min_aspect = 1.5;          // thermal_min_aspect: bounding-box height / width (animals side on ~1.1-1.3, people >= 1.6); (0, 100]
-  double max_aspect = 5.5;          // thermal_max_aspect: height / width (people side on reach ~7, but so do sun-heated posts; see the parameter table); (0, 100], >= thermal_min_aspect
+  double max_aspect = 8.0;          // thermal_max_aspect: height / width (people side on with legs together reach ~7; thinner is a pole); (0, 100], >= thermal_min_aspect
   double min_fill = 0.30;           // thermal_min_fill: area / bounding-box area; [0, 1]
   double max_fill = 0.95;           // thermal_max_fill: area / bounding-box area; [0, 1], >= thermal_min_fill
+  // A slender region (height / width at least straight_min_aspect) is a post, not a person, when
+  // its legs zone (rows 10-40 % of its height above its bottom) is as wide as its torso zone
+  // (50-80 %): median row extents within a ratio r in [straight_ratio, 1 / r], or the region is
+  // too narrow to tell (at most 1 / (1 - r) px: 5 px for r = 0.8; a person ~35 m away side on). A person's legs together are ~0.5-0.6 of the torso (side on or facing), striding legs
+  // wider than it; a post or pole is as wide at the bottom as at the top, slanted or not. Not
+  // applied to the parts of a region split at heads (their cut sides say nothing).
+  double straight_min_aspect = 3.5;  // thermal_straight_min_aspect: height / width; (0, 100]
+  double straight_ratio = 0.8;       // thermal_straight_ratio: r; (0, 1]
 
   // --- People side by side in one region: a region whose height / width is below
   // split_max_aspect is cut where its top profile dips head_dip_fraction of its height between
