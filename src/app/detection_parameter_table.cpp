@@ -125,7 +125,8 @@ void addLidarRows(ParameterTable<DetectionParameters>& t) {
   person.real("lidar_max_bottom_m", &LidarPersonConfig::max_bottom_m, closedRange(0, 10), "m",
               "a person's lowest point is at most this high (legs reach the ground)");
   person.real("lidar_min_width_m", &LidarPersonConfig::min_width_m, closedRange(0, 20), "m",
-              "narrowest person across the line of sight", "below lidar_max_width_m");
+              "narrowest person across the line of sight (a person side on spans 0.15-0.2 m of points; a post this "
+              "narrow is caught by lidar_narrow_*)", "below lidar_max_width_m");
   person.real("lidar_max_width_m", &LidarPersonConfig::max_width_m, aboveRange(0, 20), "m",
               "widest person across the line of sight");
   person.real("lidar_max_depth_m", &LidarPersonConfig::max_depth_m, aboveRange(0, 20), "m",
@@ -136,6 +137,15 @@ void addLidarRows(ParameterTable<DetectionParameters>& t) {
               "an object at most this wide whose legs zone is as wide as its torso zone is a post");
   person.real("lidar_post_leg_to_torso_ratio", &LidarPersonConfig::post_leg_to_torso_ratio, aboveRange(0, 1), "",
               "'as wide': width of the zone at 20-45 % of the height over the zone at 50-85 % within [r, 1/r]");
+  person.real("lidar_narrow_width_m", &LidarPersonConfig::narrow_width_m, closedRange(0, 20), "m",
+              "an object narrower than this (a person side on, or a thin post) is a person only when it is "
+              "lidar_narrow_min_depth_m deep or shows legs narrower than its torso (lidar_narrow_leg_margin_m)");
+  person.real("lidar_narrow_min_depth_m", &LidarPersonConfig::narrow_min_depth_m, closedRange(0, 20), "m",
+              "depth along the line of sight that makes a narrow object a person (a person side on shows the near arm "
+              "and shoulder, 0.19-0.34 m; a post the front half of its girth)");
+  person.real("lidar_narrow_leg_margin_m", &LidarPersonConfig::narrow_leg_margin_m, closedRange(0, 20), "m",
+              "or its legs zone is narrower than its torso zone by lidar_post_leg_to_torso_ratio and by this much "
+              "(about one column of points at 17 m: a post's zones differ by a column at most)");
   person.integer("lidar_min_points", &LidarPersonConfig::min_points, {1, 1000000}, "",
                  "fewest points on a person at any range");
   person.real("lidar_min_points_at_10m", &LidarPersonConfig::min_points_at_10m, closedRange(0, 1e6), "",

@@ -21,6 +21,7 @@ const char* toString(ShapeVerdict verdict) {
     case ShapeVerdict::kTooDeep: return "too_deep";
     case ShapeVerdict::kTooSquat: return "too_squat";
     case ShapeVerdict::kStraight: return "straight";
+    case ShapeVerdict::kNarrowNoLegs: return "narrow_no_legs";
   }
   return "unknown";
 }
@@ -70,7 +71,12 @@ PersonShape measureShape(const std::vector<Eigen::Vector3f>& levelled, const std
   }
   shape.depth_m = a_max - a_min;
   shape.width_m = c_max - c_min;
-  if (leg_max > leg_min && torso_max > torso_min) {
+  // A zone whose points line up along the line of sight (a single column, 1 cm across) has no
+  // width to compare: its ratio would be noise (seen: 1100).
+  constexpr float kMinZoneWidthM = 0.02f;
+  if (leg_max >= leg_min) shape.leg_width_m = leg_max - leg_min;
+  if (torso_max >= torso_min) shape.torso_width_m = torso_max - torso_min;
+  if (leg_max - leg_min >= kMinZoneWidthM && torso_max - torso_min >= kMinZoneWidthM) {
     shape.leg_to_torso_width = (leg_max - leg_min) / (torso_max - torso_min);
   }
   return shape;
@@ -96,6 +102,11 @@ ShapeVerdict judgeShape(const PersonShape& s, const LidarPersonConfig& c) {
   if (s.width_m <= c.post_max_width_m && ratio >= c.post_leg_to_torso_ratio &&
       ratio <= 1.0 / c.post_leg_to_torso_ratio) {
     return ShapeVerdict::kStraight;
+  }
+  const bool shows_legs =
+      ratio > 0.0 && ratio < c.post_leg_to_torso_ratio && s.torso_width_m - s.leg_width_m >= c.narrow_leg_margin_m;
+  if (s.width_m < c.narrow_width_m && s.depth_m < c.narrow_min_depth_m && !shows_legs) {
+    return ShapeVerdict::kNarrowNoLegs;
   }
   if (s.points < minPersonPoints(s.range_m, c)) return ShapeVerdict::kTooFewPoints;
   return ShapeVerdict::kPerson;

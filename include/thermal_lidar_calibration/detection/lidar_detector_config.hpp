@@ -36,7 +36,7 @@ struct LidarPersonConfig {
   double min_height_m = 1.1;      // lidar_min_height_m: top of a person above the local ground, m; [0, 10], below lidar_max_height_m
   double max_height_m = 2.2;      // lidar_max_height_m: m; (0, 10]
   double max_bottom_m = 0.7;      // lidar_max_bottom_m: lowest point of a person above the ground (legs reach down), m; [0, 10]
-  double min_width_m = 0.2;       // lidar_min_width_m: extent across the line of sight, m; [0, 20], below lidar_max_width_m
+  double min_width_m = 0.12;      // lidar_min_width_m: extent across the line of sight (a person side on ~0.15-0.2), m; [0, 20], below lidar_max_width_m
   double max_width_m = 1.0;       // lidar_max_width_m: m; (0, 20]
   double max_depth_m = 0.9;       // lidar_max_depth_m: extent along the line of sight, m; (0, 20]
   double min_height_to_width = 1.4;  // lidar_min_height_to_width: top height / width (a bush is squat); [0, 100]
@@ -46,6 +46,15 @@ struct LidarPersonConfig {
   // post or has legs wider than the torso.
   double post_max_width_m = 0.35;         // lidar_post_max_width_m: m; [0, 20]
   double post_leg_to_torso_ratio = 0.8;   // lidar_post_leg_to_torso_ratio: r; (0, 1]
+  // Narrower than narrow_width_m (a person side on, or a thin post a few columns of points
+  // wide), an object is a person only when it is at least narrow_min_depth_m deep along the line
+  // of sight (a person side on shows the near arm and shoulder: 0.19-0.34 m on the synthetic
+  // drives; a post shows the front half of its girth) or when its legs zone is narrower than its
+  // torso zone by the ratio r above AND by narrow_leg_margin_m (about one column of an HDL-32E
+  // at 17 m: a post's zones differ by a column at most).
+  double narrow_width_m = 0.2;            // lidar_narrow_width_m: m; [0, 20]
+  double narrow_min_depth_m = 0.18;       // lidar_narrow_min_depth_m: m; [0, 20]
+  double narrow_leg_margin_m = 0.05;      // lidar_narrow_leg_margin_m: m; [0, 20]
   int min_points = 5;             // lidar_min_points: points on a person at any range; integer [1, 1000000]
   double min_points_at_10m = 20.0;// lidar_min_points_at_10m: points on a person at 10 m, scaled with (10 m / range)^2; [0, 1e6]
   void validate() const;

@@ -23,8 +23,11 @@ struct PersonShape {
   float depth_m = 0;   // extent along the line of sight
   // Width of the leg zone (20-45 % of the top) over the width of the torso zone (50-85 %):
   // ~0.5-0.7 for a standing person (legs are narrower than shoulders and arms), ~1 for a post;
-  // 0 when a zone has no point (too few rings at long range: the test is then skipped).
+  // 0 when a zone has no point or is under 2 cm wide (too few rings or columns at long range: the
+  // test is then skipped).
   float leg_to_torso_width = 0;
+  float leg_width_m = 0;    // the two zones' widths across the line of sight (0: no point)
+  float torso_width_m = 0;
 };
 
 enum class ShapeVerdict {
@@ -40,6 +43,7 @@ enum class ShapeVerdict {
   kTooDeep,
   kTooSquat,     // height / width too small: a bush, a vehicle
   kStraight,     // narrow, and the legs as wide as the torso: a post, a trunk
+  kNarrowNoLegs, // narrower than a person from the front, shallow, no legs narrower than the torso: a thin post
 };
 const char* toString(ShapeVerdict verdict);
 
