@@ -5,6 +5,9 @@
 
 #include "thermal_lidar_calibration/app/detection_parameters.hpp"
 
+#include <cmath>
+#include <cstdio>
+
 namespace thermal_lidar_calibration {
 namespace {
 
@@ -181,6 +184,23 @@ DetectionParameters loadDetectionParameters(const ParameterSource& source) {
   p.thermal.validate();  // the rules across keys (the per-key ranges are the rows')
   p.lidar.validate();
   return p;
+}
+
+std::string lidarWindowWarning(const detection::LidarPersonConfig& lidar, const CameraModel& camera) {
+  constexpr double kSlackDeg = 10.0;
+  constexpr double kDegPerRad = 180.0 / M_PI;
+  // Pinhole field of view across the image rows' width (distortion changes it by a few degrees).
+  const double view_deg =
+      (std::atan2(camera.cx + 0.5, camera.fx) + std::atan2(camera.width - 0.5 - camera.cx, camera.fx)) * kDegPerRad;
+  const double window_deg = lidar.max_azimuth_deg - lidar.min_azimuth_deg;
+  if (window_deg <= view_deg + kSlackDeg) return "";
+  char text[512];
+  std::snprintf(text, sizeof(text),
+                "the LiDAR counts people in a %.0f deg bearing window (lidar_min_azimuth_deg %.1f .. "
+                "lidar_max_azimuth_deg %.1f) but the camera sees %.0f deg across: people the camera cannot "
+                "see make wrong pairs; narrow the window to the camera's view with a few degrees of margin",
+                window_deg, lidar.min_azimuth_deg, lidar.max_azimuth_deg, view_deg);
+  return text;
 }
 
 std::vector<std::pair<std::string, std::string>> describeDetectionParameters(const DetectionParameters& p) {

@@ -232,6 +232,11 @@ int runCalibrateBag(const CalibrateBagOptions& options) {
                  algorithmText(params.calibration).c_str());
   }
 
+  if (detectors) {
+    const std::string window = lidarWindowWarning(detectors->parameters().lidar.person, camera);
+    if (!window.empty()) warn(window);
+  }
+
   ProgressLine progress(stderr, !options.quiet);
   DatasetBuilder builder(camera, params.gate);
   IngestCallbacks callbacks;

@@ -74,14 +74,30 @@ TEST(DetectionParameterTable, EveryKeyOnceAndDescribedWithItsDefault) {
 // itself looks all around); a partial file changes only what it names.
 TEST_F(DetectionParameterFile, LidarBearingWindowDefaultsToTheForwardView) {
   const DetectionParameters defaults;
-  EXPECT_EQ(defaults.lidar.person.min_azimuth_deg, -45.0);
-  EXPECT_EQ(defaults.lidar.person.max_azimuth_deg, 45.0);
+  EXPECT_EQ(defaults.lidar.person.min_azimuth_deg, -25.0);
+  EXPECT_EQ(defaults.lidar.person.max_azimuth_deg, 25.0);
   EXPECT_EQ(detection::LidarDetectorConfig{}.person.min_azimuth_deg, -180.0);
   const DetectionParameters p = load("thermal_input_flip: vertical\nlidar_max_azimuth_deg: 30\n");
   EXPECT_EQ(p.input_flip, detection::ImageFlip::kVertical);
-  EXPECT_EQ(p.lidar.person.min_azimuth_deg, -45.0);
+  EXPECT_EQ(p.lidar.person.min_azimuth_deg, -25.0);
   EXPECT_EQ(p.lidar.person.max_azimuth_deg, 30.0);
   EXPECT_NE(errorOf([&] { load("thermal_input_flip: sideways\n"); }).find("thermal_input_flip"), std::string::npos);
+}
+
+TEST(LidarWindowWarning, OnlyWhenTheWindowIsMuchWiderThanTheCamerasView) {
+  // A FLIR A65: 640 px across at 772 px focal length, 45 deg of view.
+  const CameraModel a65 = CameraModel::fromK(640, 512, {772.0, 0, 320.0, 0, 772.0, 256.0, 0, 0, 1.0}, {});
+  DetectionParameters p;  // the default window, +-25 deg
+  EXPECT_EQ(lidarWindowWarning(p.lidar.person, a65), "");
+  p.lidar.person.min_azimuth_deg = -45.0;
+  p.lidar.person.max_azimuth_deg = 45.0;
+  const std::string warning = lidarWindowWarning(p.lidar.person, a65);
+  EXPECT_NE(warning.find("90 deg bearing window"), std::string::npos) << warning;
+  EXPECT_NE(warning.find("camera sees 45 deg"), std::string::npos) << warning;
+  EXPECT_EQ(warning.find('\n'), std::string::npos);
+  // A wide-angle camera (90 deg) is fine with it.
+  const CameraModel wide = CameraModel::fromK(640, 512, {320.0, 0, 320.0, 0, 320.0, 256.0, 0, 0, 1.0}, {});
+  EXPECT_EQ(lidarWindowWarning(p.lidar.person, wide), "");
 }
 
 }  // namespace
