@@ -12,9 +12,13 @@
 // of people who are not scored are ignored, neither right nor wrong. For the LiDAR a second
 // line ("lidar 20m") also leaves out detections whose centre is beyond 20 m, where no person is
 // scored (the targets are for that region); the first line counts every detection.
-// Usage: score_raw_detections RAW.bag [--config PARAMS.yaml]
+// Usage: score_raw_detections RAW.bag [--config PARAMS.yaml] [--explain]
 //   (make_synthetic_bag --raw; the detectors' keys of PARAMS.yaml, as calibrate_bag --config
-//   reads them, else the defaults; prints one line per modality)
+//   reads them, else the defaults; prints one line per modality; --explain first prints a line
+//   per missed person and false detection, with what the detector measured there:
+//   bench/detection_explain.hpp)
+
+#include "detection_explain.hpp"
 
 #include "thermal_lidar_calibration/app/detection_parameters.hpp"
 #include "thermal_lidar_calibration/app/parameter_source.hpp"
@@ -64,6 +68,14 @@ std::vector<det::TruthPerson> thermalPeople(const cv::Mat& truth) {
   return people;
 }
 
+std::vector<std::uint32_t> scoredIds(const std::vector<det::TruthPerson>& people) {
+  std::vector<std::uint32_t> ids;
+  for (const auto& p : people) {
+    if (p.scored) ids.push_back(p.id);
+  }
+  return ids;
+}
+
 std::vector<det::TruthPerson> lidarPeople(const std::vector<Eigen::Vector3f>& points,
                                           const std::vector<std::uint32_t>& truth, const tlc::DetectionParameters& p) {
   std::map<std::uint32_t, std::pair<Eigen::Vector3f, int>> sums;
@@ -88,15 +100,31 @@ std::vector<det::TruthPerson> lidarPeople(const std::vector<Eigen::Vector3f>& po
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2 && !(argc == 4 && std::string(argv[2]) == "--config")) {
-    std::fprintf(stderr, "usage: score_raw_detections RAW.bag [--config PARAMS.yaml]\n");
+  std::string bag_path, config_path;
+  bool explain = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--config" && i + 1 < argc) {
+      config_path = argv[++i];
+    } else if (arg == "--explain") {
+      explain = true;
+    } else if (bag_path.empty() && arg.rfind("--", 0) != 0) {
+      bag_path = arg;
+    } else {
+      bag_path.clear();
+      break;
+    }
+  }
+  if (bag_path.empty()) {
+    std::fprintf(stderr, "usage: score_raw_detections RAW.bag [--config PARAMS.yaml] [--explain]\n");
     return 2;
   }
   try {
-    const tlc::DetectionParameters params =
-        argc == 4 ? tlc::loadDetectionParameters(*tlc::makeYamlParameterSource(argv[3])) : tlc::DetectionParameters{};
+    const tlc::DetectionParameters params = config_path.empty()
+                                                ? tlc::DetectionParameters{}
+                                                : tlc::loadDetectionParameters(*tlc::makeYamlParameterSource(config_path));
     tlc::ros_io::PersonDetectionAdapter adapter(params);
-    rosbag::Bag bag(argv[1], rosbag::bagmode::Read);
+    rosbag::Bag bag(bag_path, rosbag::bagmode::Read);
     det::DetectionScore thermal, lidar, lidar_near;
     sensor_msgs::Image::ConstPtr image, mask;
     for (const rosbag::MessageInstance& m :
@@ -113,6 +141,9 @@ int main(int argc, char** argv) {
         for (int index : out.detection.indices) detected_truth.push_back(truth[static_cast<std::size_t>(index)]);
         const std::vector<det::TruthPerson> people = lidarPeople(points, truth, params);
         lidar.add(det::scoreClusters(out.detection.labels, detected_truth, people));
+        if (explain) {
+          tlc::bench::explainLidar(stdout, cloud->header.stamp.toSec(), out.detection, points, truth, scoredIds(people));
+        }
         std::vector<std::uint32_t> near_labels, near_truth;
         for (std::size_t k = 0; k < out.detection.labels.size(); ++k) {
           const std::uint32_t label = out.detection.labels[k];
@@ -129,7 +160,12 @@ int main(int argc, char** argv) {
       const tlc::ros_io::SegmentedImage seg = adapter.segment(image, "/thermal/image_raw");
       const cv::Mat truth = tlc::ros_io::decodeMonoImage(*mask, "/truth/thermal_person_ids");
       const cv::Mat detected = tlc::ros_io::decodeMonoImage(*seg.mask, "mask");
-      thermal.add(det::scoreMask(detected, truth, thermalPeople(truth)));
+      const std::vector<det::TruthPerson> people = thermalPeople(truth);
+      thermal.add(det::scoreMask(detected, truth, people));
+      if (explain) {
+        tlc::bench::explainThermal(stdout, image->header.stamp.toSec(), seg.segmentation, detected, truth,
+                                   scoredIds(people));
+      }
       image.reset();
       mask.reset();
     }
