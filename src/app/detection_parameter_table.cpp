@@ -140,6 +140,9 @@ void addLidarRows(ParameterTable<DetectionParameters>& t) {
               "an object at most this wide whose legs zone is as wide as its torso zone is a post");
   person.real("lidar_post_leg_to_torso_ratio", &LidarPersonConfig::post_leg_to_torso_ratio, aboveRange(0, 1), "",
               "'as wide': width of the zone at 20-45 % of the height over the zone at 50-85 % within [r, 1/r]");
+  person.real("lidar_post_max_head_ratio", &LidarPersonConfig::post_max_head_ratio, closedRange(0, 1), "",
+              "such an object is a person after all when its head zone (above 85 % of its height) is narrower than this "
+              "times its torso zone (a person striding across the view, or with hidden legs); 0 = off");
   person.real("lidar_narrow_width_m", &LidarPersonConfig::narrow_width_m, closedRange(0, 20), "m",
               "an object narrower than this (a person side on, or a thin post) is a person only when it is "
               "lidar_narrow_min_depth_m deep or shows legs narrower than its torso (lidar_narrow_leg_margin_m)");

@@ -40,6 +40,7 @@ void LidarPersonConfig::validate() const {
   requireRange("lidar_min_height_to_width", min_height_to_width, 0.0, 100.0);
   requireRange("lidar_post_max_width_m", post_max_width_m, 0.0, 20.0);
   requireRange("lidar_post_leg_to_torso_ratio", post_leg_to_torso_ratio, 0.0, 1.0, Bound::kOpen);
+  requireRange("lidar_post_max_head_ratio", post_max_head_ratio, 0.0, 1.0);
   requireRange("lidar_narrow_width_m", narrow_width_m, 0.0, 20.0);
   requireRange("lidar_narrow_min_depth_m", narrow_min_depth_m, 0.0, 20.0);
   requireRange("lidar_narrow_leg_margin_m", narrow_leg_margin_m, 0.0, 20.0);

@@ -49,9 +49,9 @@ PersonShape measureShape(const std::vector<Eigen::Vector3f>& levelled, const std
   const Eigen::Vector2f across(-along.y(), along.x());
   const float inf = std::numeric_limits<float>::infinity();
   float a_min = inf, a_max = -inf, c_min = inf, c_max = -inf;
-  float leg_min = inf, leg_max = -inf, torso_min = inf, torso_max = -inf;
+  float leg_min = inf, leg_max = -inf, torso_min = inf, torso_max = -inf, head_min = inf, head_max = -inf;
   // Zone bounds as fractions of the top: legs 20-45 % (above stray ground points at the feet),
-  // torso and arms 50-85 % (below the head).
+  // torso and arms 50-85 % (below the head), head above 85 %.
   const float leg_bottom = 0.2f * top, leg_top = 0.45f * top, torso_bottom = 0.5f * top, torso_top = 0.85f * top;
   for (int i : indices) {
     const Eigen::Vector2f p = levelled[i].head<2>();
@@ -67,6 +67,9 @@ PersonShape measureShape(const std::vector<Eigen::Vector3f>& levelled, const std
     } else if (h >= torso_bottom && h <= torso_top) {
       torso_min = std::min(torso_min, c);
       torso_max = std::max(torso_max, c);
+    } else if (h > torso_top) {
+      head_min = std::min(head_min, c);
+      head_max = std::max(head_max, c);
     }
   }
   shape.depth_m = a_max - a_min;
@@ -76,6 +79,7 @@ PersonShape measureShape(const std::vector<Eigen::Vector3f>& levelled, const std
   constexpr float kMinZoneWidthM = 0.02f;
   if (leg_max >= leg_min) shape.leg_width_m = leg_max - leg_min;
   if (torso_max >= torso_min) shape.torso_width_m = torso_max - torso_min;
+  if (head_max >= head_min) shape.head_width_m = head_max - head_min;
   if (leg_max - leg_min >= kMinZoneWidthM && torso_max - torso_min >= kMinZoneWidthM) {
     shape.leg_to_torso_width = (leg_max - leg_min) / (torso_max - torso_min);
   }
@@ -99,8 +103,11 @@ ShapeVerdict judgeShape(const PersonShape& s, const LidarPersonConfig& c) {
   if (s.width_m < c.min_width_m) return ShapeVerdict::kTooNarrow;
   if (s.top_m < c.min_height_to_width * s.width_m) return ShapeVerdict::kTooSquat;
   const double ratio = s.leg_to_torso_width;  // 0 = not measured
+  // Legs as wide as the torso: a post, unless a head narrower than the torso sits on top (a
+  // person striding across the view, or with the legs hidden, reads as straight below).
+  const bool has_head = s.head_width_m > 0.0f && s.head_width_m < c.post_max_head_ratio * s.torso_width_m;
   if (s.width_m <= c.post_max_width_m && ratio >= c.post_leg_to_torso_ratio &&
-      ratio <= 1.0 / c.post_leg_to_torso_ratio) {
+      ratio <= 1.0 / c.post_leg_to_torso_ratio && !has_head) {
     return ShapeVerdict::kStraight;
   }
   const bool shows_legs =

@@ -26,8 +26,9 @@ struct PersonShape {
   // 0 when a zone has no point or is under 2 cm wide (too few rings or columns at long range: the
   // test is then skipped).
   float leg_to_torso_width = 0;
-  float leg_width_m = 0;    // the two zones' widths across the line of sight (0: no point)
+  float leg_width_m = 0;    // the zones' widths across the line of sight (0: no point)
   float torso_width_m = 0;
+  float head_width_m = 0;   // above 85 % of the top
 };
 
 enum class ShapeVerdict {
@@ -42,7 +43,7 @@ enum class ShapeVerdict {
   kTooWide,
   kTooDeep,
   kTooSquat,     // height / width too small: a bush, a vehicle
-  kStraight,     // narrow, and the legs as wide as the torso: a post, a trunk
+  kStraight,     // narrow, the legs as wide as the torso and no narrower head: a post, a trunk
   kNarrowNoLegs, // narrower than a person from the front, shallow, no legs narrower than the torso: a thin post
 };
 const char* toString(ShapeVerdict verdict);
