@@ -131,6 +131,7 @@ ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const 
   cv::Mat binary;
   cv::inRange(image, cv::Scalar(lo), cv::Scalar(hi), binary);
   if (!open_kernel_.empty()) cv::morphologyEx(binary, binary, cv::MORPH_OPEN, open_kernel_);
+  cv::Mat opened = binary.clone();  // the head split reads its top profile here (thermal_regions.hpp)
   if (!close_kernel_.empty()) cv::morphologyEx(binary, binary, cv::MORPH_CLOSE, close_kernel_);
 
   cv::Mat labels, stats, centroids;
@@ -153,7 +154,7 @@ ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const 
     // A region wider than one person for its height may hold people side by side.
     const double aspect = static_cast<double>(region.bbox.height) / region.bbox.width;
     if (aspect < c.split_max_aspect && failure != "too_large" && failure != "too_short") {
-      const std::vector<WarmRegion> parts = splitAtHeads(labels, region, c.head_dip_fraction);
+      const std::vector<WarmRegion> parts = splitAtHeads(labels, opened, region, c.head_dip_fraction);
       if (parts.size() > 1) {
         for (const WarmRegion& part : parts) {
           const std::string part_failure = shapeFailure(part, c, max_area);

@@ -94,14 +94,16 @@ WarmRegion measureColumns(const cv::Mat& labels, int label, const cv::Rect& bbox
   return part;
 }
 
-std::vector<WarmRegion> splitAtHeads(const cv::Mat& labels, const WarmRegion& region, double dip_fraction) {
+std::vector<WarmRegion> splitAtHeads(const cv::Mat& labels, const cv::Mat& opened, const WarmRegion& region,
+                                     double dip_fraction) {
   const cv::Rect& b = region.bbox;
   // Height of the region's top above its bottom row, per column (0 = no pixel in the column).
   std::vector<int> profile(static_cast<std::size_t>(b.width), 0);
   for (int y = b.y + b.height - 1; y >= b.y; --y) {
     const int* row = labels.ptr<int>(y);
+    const std::uint8_t* open_row = opened.ptr<std::uint8_t>(y);
     for (int x = b.x; x < b.x + b.width; ++x) {
-      if (row[x] == region.label) profile[static_cast<std::size_t>(x - b.x)] = b.y + b.height - y;
+      if (row[x] == region.label && open_row[x]) profile[static_cast<std::size_t>(x - b.x)] = b.y + b.height - y;
     }
   }
   // Walk across: a valley splits when both the peak before it and the rise after it clear dip.

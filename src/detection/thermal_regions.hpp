@@ -54,7 +54,10 @@ WarmRegion measureColumns(const cv::Mat& labels, int label, const cv::Rect& bbox
 // The parts of a region between the valleys of its top profile (the highest pixel per column)
 // that dip at least dip_fraction of the region's height below the heads on both sides; the
 // valley columns themselves belong to no part. One part (the region) when there is no valley.
-std::vector<WarmRegion> splitAtHeads(const cv::Mat& labels, const WarmRegion& region, double dip_fraction);
+// The profile is read from `opened`, the binary mask before its closing: two heads 1-2 px apart
+// (a person half behind another) are joined by the closing, which fills the valley between them.
+std::vector<WarmRegion> splitAtHeads(const cv::Mat& labels, const cv::Mat& opened, const WarmRegion& region,
+                                     double dip_fraction);
 
 }  // namespace detection
 }  // namespace thermal_lidar_calibration

@@ -92,6 +92,18 @@ TEST(ThermalPersonSegmenter, PeopleSideBySideInOneWarmRegionAreSplitAtTheirHeads
   EXPECT_EQ(ThermalPersonSegmenter().segment(one).people.size(), 1u);
 }
 
+TEST(ThermalPersonSegmenter, PeopleOneHalfBehindTheOtherAreSplitEvenWhenTheClosingJoinsTheirHeads) {
+  // The farther person (shorter, head lower) stands half behind the nearer one; their heads are
+  // 2 px apart, a gap the mask's closing fills. The heads are found in the mask before closing.
+  cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 31);
+  drawPerson(image, 320, 163, 120, 306.0, 300.0);  // farther: head x 312-328
+  drawPerson(image, 300, 150, 140, 307.0, 301.0);  // nearer, drawn over it: head x 291-309
+  const auto result = ThermalPersonSegmenter().segment(image);
+  ASSERT_EQ(result.people.size(), 2u) << "one region: " << (result.people.empty() ? 0 : result.people[0].bbox.width);
+  EXPECT_LT(result.people[0].centroid.x, result.people[1].centroid.x);
+  EXPECT_NEAR(result.people[1].bbox.y, 163, 2);  // the farther one's head top
+}
+
 TEST(ThermalPersonSegmenter, AnimalAtBodyTemperatureIsNotAPerson) {
   cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 5);
   drawAnimal(image, 300, 300, 90, 307.0);  // 90 px long, ~50 px high: height / width < 1
