@@ -68,7 +68,7 @@ std::string CalibrateBagDetectCli::dir_, CalibrateBagDetectCli::raw_bag_, Calibr
 
 // A default run from raw topics (sun-heated posts, parked vehicles and animals as warm
 // confounders, image noise) on a fixed 120 s drive: within the 0.15 deg and 3 cm of the
-// truth (README, "From raw sensors": clean seed 1, 0.046 deg, 1.51 cm; the ideal topics of the
+// truth (README, "From raw sensors": clean seed 1, 0.020 deg, 0.66 cm; the ideal topics of the
 // same drive give 0.019 deg, 0.49 cm). Over drives the spread is wider and short drives can fail.
 TEST_F(CalibrateBagDetectCli, CalibratesFromRawTopicsNearTheTruth) {
   const std::string out = dir_ + "/detect.yaml";
