@@ -144,7 +144,11 @@ void CalibrationNode::onFrame(const sensor_msgs::Image::ConstPtr& image,
                       camera_info_topic_.c_str());
     return;
   }
-  if (state_ == CalibrationStatus::OPTIMIZING || state_ == CalibrationStatus::DONE) return;
+  // With ~stop_when: quality the node keeps collecting while it fits (the worker has its own copy
+  // of the pairs): the vehicle drives on, and the next fit wants more pairs anyway. Otherwise the
+  // fit in progress is the result.
+  if (state_ == CalibrationStatus::DONE) return;
+  if (state_ == CalibrationStatus::OPTIMIZING && params_.stop_when != StopWhen::kQuality) return;
   if (params_.mode == NodeMode::kMonitor &&
       !ensureMonitoring(tfFrameId(image->header.frame_id), tfFrameId(clusters->header.frame_id))) {
     return;

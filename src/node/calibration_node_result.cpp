@@ -86,7 +86,8 @@ void CalibrationNode::handleOutcome(CalibrationWorker::Outcome outcome) {
   overlay_->setEstimate(result_->extrinsic);
   result_published_ = false;
   if (tfCheckWaitOver()) publishResult();
-  const std::size_t n = builder_->pairs().size();
+  // The pairs this fit used (collecting went on while it ran with ~stop_when: quality).
+  const std::size_t n = result_stamps_s_.size();
   if (params_.stop_when == StopWhen::kQuality && quality_ &&
       quality_->verdict.verdict != Verdict::kGood && n < static_cast<std::size_t>(params_.max_pairs)) {
     // Not good yet: the result is out (a better one replaces it), and collecting goes on.
@@ -100,6 +101,10 @@ void CalibrationNode::handleOutcome(CalibrationWorker::Outcome outcome) {
                  std::to_string(params_.max_pairs) + ")" +
                  (write_error.empty() ? "" : "; result file NOT written (" + write_error + ")"));
     ROS_INFO("%s", state_message_.c_str());
+    // The pairs kept during the fit may already be enough for the next one.
+    if (builder_->pairs().size() >= nextFitPairs()) {
+      startOptimization("~stop_when quality: " + std::to_string(nextFitPairs()) + " pairs, fitting again");
+    }
     return;
   }
   setState(CalibrationStatus::DONE,
@@ -168,9 +173,15 @@ void CalibrationNode::publishResult() {
 
 void CalibrationNode::writeReport() {
   if (params_.report_dir.empty()) return;
+  // The pairs of the run: the first ones kept (with ~stop_when: quality more may have been kept
+  // while it ran). The copy shares the images.
+  const std::vector<CalibrationPair> fitted(builder_->pairs().begin(),
+                                            builder_->pairs().begin() +
+                                                static_cast<std::ptrdiff_t>(std::min(result_stamps_s_.size(),
+                                                                                     builder_->pairs().size())));
   ReportInput report;
   report.camera = &builder_->camera();
-  report.pairs = &builder_->pairs();  // the pairs of the run: none are kept while optimizing
+  report.pairs = &fitted;
   report.result = &*result_;
   report.quality = quality_ ? &*quality_ : nullptr;
   report.threshold_px = params_.core.calibration.outlier.threshold_px;
