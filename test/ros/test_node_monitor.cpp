@@ -55,6 +55,29 @@ bool waitForPlayerDone(double timeout_s, double quiet_s) {
   return false;
 }
 
+// The watch is done too: its pairs seen and tests have not changed for `quiet_s` of wall time. On
+// a loaded machine the watch thread can be seconds behind the callbacks at 3x playback.
+bool waitForWatchIdle(double timeout_s, double quiet_s) {
+  std::pair<std::uint32_t, std::uint32_t> last{0, 0};
+  ros::WallTime last_change = ros::WallTime::now();
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
+  while (ros::ok() && ros::WallTime::now() < end) {
+    std::pair<std::uint32_t, std::uint32_t> now;
+    {
+      std::lock_guard<std::mutex> lock(g_observed.mutex);
+      now = {g_observed.last_status.drift_pairs_seen, g_observed.last_status.drift_tests};
+    }
+    if (now != last) {
+      last = now;
+      last_change = ros::WallTime::now();
+    } else if ((ros::WallTime::now() - last_change).toSec() > quiet_s) {
+      return true;
+    }
+    ros::WallDuration(0.1).sleep();
+  }
+  return false;
+}
+
 Extrinsic nodePublished(const std::string& child) {
   geometry_msgs::TransformStamped published;
   for (auto r = g_observed.tf_static.equal_range(child); r.first != r.second; ++r.first) {
@@ -92,6 +115,7 @@ TEST(NodeMonitor, ConfirmsTheBumpAndPublishesTheNewExtrinsic) {
   ros::NodeHandle nh;
   const ros::Subscriber sub = nh.subscribe("calibration_node/status", 1000, onStatusTimeline);
   ASSERT_TRUE(waitForPlayerDone(pnh.param("timeout_s", 240.0), 6.0)) << "the bag did not play";
+  EXPECT_TRUE(waitForWatchIdle(120.0, 6.0)) << "the drift watch was still busy 2 minutes after the bag";
 
   const YAML::Node truth = YAML::LoadFile(truth_file);
   const double change_at = truth["extrinsic_change"]["at_stamp"].as<double>();
@@ -155,6 +179,7 @@ TEST(NodeMonitor, AStableDriveStaysOk) {
   robot_tf.sendTransform(t);
   const ros::Subscriber sub = nh.subscribe("calibration_node/status", 1000, onStatusTimeline);
   ASSERT_TRUE(waitForPlayerDone(pnh.param("timeout_s", 240.0), 6.0)) << "the bag did not play";
+  EXPECT_TRUE(waitForWatchIdle(120.0, 6.0)) << "the drift watch was still busy 2 minutes after the bag";
   {
     std::lock_guard<std::mutex> lock(g_timeline.mutex);
     for (const auto& [stamp, state] : g_timeline.states) {
