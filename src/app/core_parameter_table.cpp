@@ -78,13 +78,19 @@ void addDriftRows(ParameterTable<CoreParameters>& t) {
   drift.integer("monitor_confirm_windows", &DriftConfig::confirm_windows, {1, 1000}, "",
                 "consecutive changed tests that confirm a change (ERROR); one is WARN");
   drift.real("monitor_significance", &DriftConfig::significance, aboveRange(0, 0.5), "",
-             "a window's fit must beat the reference on held-out pairs with a signed-rank p-value below this");
+             "a window's fit must beat the reference on held-out pairs with a signed-rank p-value below this "
+             "(the offset test's two-sided p-values too)");
   drift.real("monitor_min_loss_ratio", &DriftConfig::min_loss_ratio, closedRange(1, 1e6), "",
              "and the reference's loss on the window must be this many times the fit's");
   drift.real("monitor_min_rotation_deg", &DriftConfig::min_rotation_deg, closedRange(0, 180), "deg",
              "and the change at least this large (or the translation's)");
   drift.real("monitor_min_translation_cm", &DriftConfig::min_translation_cm, closedRange(0, 1e5), "cm",
              "translation change that counts (0 and 0: any size)");
+  drift.real("monitor_min_offset_x_px", &DriftConfig::min_offset_x_px, closedRange(0, 1e4), "px",
+             "or: the people's image offsets against the reference differ from zero across the image "
+             "(two-sided signed-rank p below monitor_significance) by at least this (above 12: off)");
+  drift.real("monitor_min_offset_y_px", &DriftConfig::min_offset_y_px, closedRange(0, 1e4), "px",
+             "the same down the image (above 12: off)");
   drift.integer("monitor_folds", &DriftConfig::folds, {2, 100000}, "",
                 "cross-fitting folds of the held-out test", "at most monitor_window_pairs / 3");
   drift.integer("monitor_update_pairs", &DriftConfig::update_pairs, {6, 100000}, "",

@@ -37,16 +37,21 @@ void writeDriftCsv(const std::string& path, const DriftTimeline& timeline) {
   std::ofstream out(path);
   // The INTERFACE's columns come first; then pairs_seen (kept pairs given to the watch so far)
   // and each test's evidence, so a user can see which part of the test held or failed.
+  // Then the offset test's evidence: the window's image offset across and down the image
+  // against the reference, px, its p-values and the pairs in it.
   out << "stamp,pairs_in_window,state,rotation_change_deg,translation_change_cm,loss_reference,"
-         "loss_fit,pairs_seen,p_value,held_out_pairs,image_shift_px,pairs_used,changed\n";
-  char row[320];
+         "loss_fit,pairs_seen,p_value,held_out_pairs,image_shift_px,pairs_used,changed,"
+         "offset_x_px,offset_y_px,offset_p_value_x,offset_p_value_y,offset_pairs\n";
+  char row[400];
   for (const DriftRecord& r : timeline.records) {
-    std::snprintf(row, sizeof(row), "%.3f,%zu,%s,%.4f,%.3f,%.5f,%.5f,%llu,%.3g,%zu,%.3f,%zu,%d\n",
+    std::snprintf(row, sizeof(row),
+                  "%.3f,%zu,%s,%.4f,%.3f,%.5f,%.5f,%llu,%.3g,%zu,%.3f,%zu,%d,%.3f,%.3f,%.3g,%.3g,%zu\n",
                   r.stamp_s, r.test.pairs_in_window, toString(r.state), r.test.change.angle_deg,
                   r.test.change.distance_cm, r.test.loss_reference, r.test.loss_fit,
                   static_cast<unsigned long long>(r.pairs_seen), r.test.p_value,
                   r.test.held_out_pairs, r.test.image_shift_px, r.test.pairs_used,
-                  r.test.changed() ? 1 : 0);
+                  r.test.changed() ? 1 : 0, r.test.offset_px.x(), r.test.offset_px.y(),
+                  r.test.offset_p_value.x(), r.test.offset_p_value.y(), r.test.offset_pairs);
     out << row;
   }
   out.close();

@@ -13,6 +13,8 @@ void DriftConfig::validate() const {
   requireRange("monitor_min_loss_ratio", min_loss_ratio, 1.0, 1e6);
   requireRange("monitor_min_rotation_deg", min_rotation_deg, 0.0, 180.0);
   requireRange("monitor_min_translation_cm", min_translation_cm, 0.0, 1e5);
+  requireRange("monitor_min_offset_x_px", min_offset_x_px, 0.0, 1e4);
+  requireRange("monitor_min_offset_y_px", min_offset_y_px, 0.0, 1e4);
   requireRange("monitor_folds", folds, 2, window_pairs / 3);
   requireRange("monitor_update_pairs", update_pairs, 6, 100000);
   requireRange("monitor_fit_max_evaluations", fit_max_evaluations, 1, 100000000);

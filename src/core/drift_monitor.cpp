@@ -49,9 +49,29 @@ std::vector<CalibrationPair> DriftMonitor::pairsSince(std::uint64_t seq,
   return out;
 }
 
+void DriftMonitor::updateOffsets() {
+  if (held_.empty()) return;
+  const auto started = std::chrono::steady_clock::now();
+  const LossEvaluator bilinear(
+      camera_, lastPairs(held_.size()),
+      LossConfig{calibration_.behind_camera_penalty_c1, PixelRule::kBilinear});
+  for (std::size_t i = 0; i < held_.size(); ++i) {
+    held_[i].offset = pairImageOffset(bilinear, i, reference_, {}, calibration_.num_threads);
+  }
+  seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+}
+
 std::optional<DriftRecord> DriftMonitor::addPair(CalibrationPair pair) {
   pair.image.release();
-  held_.push_back({next_seq_++, std::move(pair)});
+  const auto started = std::chrono::steady_clock::now();
+  // Its image offset against the reference, once (the tests of the next windows share it).
+  const LossEvaluator bilinear(
+      camera_, {pair}, LossConfig{calibration_.behind_camera_penalty_c1, PixelRule::kBilinear});
+  const ImageOffset offset = pairImageOffset(bilinear, 0, reference_, {}, calibration_.num_threads);
+  const double offset_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  seconds_ += offset_seconds;
+  held_.push_back({next_seq_++, std::move(pair), offset});
   const std::size_t keep =
       static_cast<std::size_t>(std::max(drift_.window_pairs, drift_.update_pairs));
   while (held_.size() > keep) held_.pop_front();
@@ -62,12 +82,15 @@ std::optional<DriftRecord> DriftMonitor::addPair(CalibrationPair pair) {
   }
   since_test_ = 0;
 
-  const auto started = std::chrono::steady_clock::now();
   const std::vector<CalibrationPair> window = lastPairs(drift_.window_pairs);
+  std::vector<ImageOffset> offsets;
+  for (std::size_t i = held_.size() - window.size(); i < held_.size(); ++i) {
+    offsets.push_back(held_[i].offset);
+  }
   DriftRecord record;
   record.stamp_s = window.back().stamp_s;
   record.pairs_seen = next_seq_;
-  record.test = testDriftWindow(camera_, window, reference_, drift_, calibration_);
+  record.test = testDriftWindow(camera_, window, reference_, drift_, calibration_, offsets);
   const DriftState before = machine_.state();
   record.state = machine_.onTest(record.test.changed(), record.stamp_s);
 
@@ -79,7 +102,7 @@ std::optional<DriftRecord> DriftMonitor::addPair(CalibrationPair pair) {
       candidate_.reset();
     }
     if (record.state == DriftState::kError && before != DriftState::kError) {
-      confirm_p_value_ = record.test.p_value;
+      confirm_p_value_ = record.test.changed_p_value;
     }
   } else if (record.state == DriftState::kOk && !settling_) {
     change_seq_.reset();  // the suspicion did not hold
@@ -105,7 +128,7 @@ std::optional<DriftRecord> DriftMonitor::addPair(CalibrationPair pair) {
 
   record.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  seconds_ += record.seconds;
+  seconds_ += record.seconds - offset_seconds;
   last_record_ = record;
   return record;
 }
@@ -187,6 +210,7 @@ std::optional<DriftUpdate> DriftMonitor::acceptCandidate() {
   if (!settling_) change_seq_.reset();
   candidate_.reset();
   machine_.reset();
+  updateOffsets();
   return update;
 }
 
@@ -196,6 +220,7 @@ void DriftMonitor::setReference(const Extrinsic& reference) {
   change_seq_.reset();
   settling_ = false;
   candidate_.reset();
+  updateOffsets();
 }
 
 }  // namespace thermal_lidar_calibration

@@ -39,33 +39,47 @@ double meanImageShiftPx(const CameraModel& camera, const std::vector<Calibration
   return counted == 0 ? 0.0 : sum / static_cast<double>(counted);
 }
 
-}  // namespace
-
-DriftChange driftChange(const Extrinsic& fit, const Extrinsic& reference) {
-  DriftChange c;
-  const Eigen::Matrix3d delta = fit.rotationMatrix() * reference.rotationMatrix().transpose();
-  c.rotation_deg = matrixToRodrigues(delta) * kDegPerRad;
-  c.translation_cm = (fit.translation - reference.translation) * 100.0;
-  c.angle_deg = c.rotation_deg.norm();
-  c.distance_cm = c.translation_cm.norm();
-  return c;
+// The offset test on the window's usable pairs (see the header).
+void testOffsets(const std::vector<ImageOffset>& offsets, const std::vector<std::size_t>& candidates,
+                 double threshold_px, const DriftConfig& drift, DriftWindowTest& out) {
+  std::vector<double> across, down;
+  for (std::size_t i : candidates) {
+    if (offsets[i].loss_px > threshold_px) continue;  // no offset explains this pair
+    across.push_back(offsets[i].offset_px.x());
+    down.push_back(offsets[i].offset_px.y());
+  }
+  out.offset_pairs = across.size();
+  out.offset_px = Eigen::Vector2d(hodgesLehmann(across), hodgesLehmann(down));
+  out.offset_p_value = Eigen::Vector2d(signedRankTestTwoSided(across).p_value,
+                                       signedRankTestTwoSided(down).p_value);
+  const Eigen::Vector2d min_offset(drift.min_offset_x_px, drift.min_offset_y_px);
+  double counted_p = 1.0;
+  for (int axis = 0; axis < 2; ++axis) {
+    if (out.offset_p_value[axis] < drift.significance &&
+        std::abs(out.offset_px[axis]) >= min_offset[axis]) {
+      out.offset_changed = true;
+      counted_p = std::min(counted_p, out.offset_p_value[axis]);
+    }
+  }
+  out.changed_p_value = out.significant && out.large ? out.p_value
+                        : out.offset_changed         ? counted_p
+                                                     : out.p_value;
 }
 
-RefineConfig driftRefineConfig(const DriftConfig& drift, const CalibrationConfig& calibration) {
-  RefineConfig refine = calibration.refine;
-  refine.max_evaluations = std::min(refine.max_evaluations, drift.fit_max_evaluations);
-  return refine;
-}
-
-DriftWindowTest testDriftWindow(const CameraModel& camera,
-                                const std::vector<CalibrationPair>& window,
-                                const Extrinsic& reference, const DriftConfig& drift,
-                                const CalibrationConfig& calibration) {
+DriftWindowTest testWindow(const CameraModel& camera, const std::vector<CalibrationPair>& window,
+                           const Extrinsic& reference, const DriftConfig& drift,
+                           const CalibrationConfig& calibration,
+                           const std::vector<ImageOffset>* known_offsets) {
   drift.validate();
   calibration.validate();
   if (window.size() < 2 * static_cast<std::size_t>(drift.folds)) {
     throw std::invalid_argument("drift test: the window has " + std::to_string(window.size()) +
                                 " pairs; it needs at least " + std::to_string(2 * drift.folds));
+  }
+  if (known_offsets && known_offsets->size() != window.size()) {
+    throw std::invalid_argument("drift test: " + std::to_string(known_offsets->size()) +
+                                " image offsets for a window of " +
+                                std::to_string(window.size()) + " pairs");
   }
   const LossEvaluator nearest(
       camera, window, LossConfig{calibration.behind_camera_penalty_c1, PixelRule::kNearest});
@@ -111,7 +125,50 @@ DriftWindowTest testDriftWindow(const CameraModel& camera,
   out.held_out_pairs = test.n;
   out.p_value = test.p_value;
   out.significant = test.n > 0 && test.p_value < drift.significance;
+
+  std::vector<ImageOffset> offsets;
+  if (known_offsets) {
+    offsets = *known_offsets;
+  } else {
+    for (std::size_t i = 0; i < window.size(); ++i) {
+      offsets.push_back(pairImageOffset(bilinear, i, reference, {}, calibration.num_threads));
+    }
+  }
+  testOffsets(offsets, candidates, threshold, drift, out);
   return out;
+}
+
+}  // namespace
+
+DriftChange driftChange(const Extrinsic& fit, const Extrinsic& reference) {
+  DriftChange c;
+  const Eigen::Matrix3d delta = fit.rotationMatrix() * reference.rotationMatrix().transpose();
+  c.rotation_deg = matrixToRodrigues(delta) * kDegPerRad;
+  c.translation_cm = (fit.translation - reference.translation) * 100.0;
+  c.angle_deg = c.rotation_deg.norm();
+  c.distance_cm = c.translation_cm.norm();
+  return c;
+}
+
+RefineConfig driftRefineConfig(const DriftConfig& drift, const CalibrationConfig& calibration) {
+  RefineConfig refine = calibration.refine;
+  refine.max_evaluations = std::min(refine.max_evaluations, drift.fit_max_evaluations);
+  return refine;
+}
+
+DriftWindowTest testDriftWindow(const CameraModel& camera,
+                                const std::vector<CalibrationPair>& window,
+                                const Extrinsic& reference, const DriftConfig& drift,
+                                const CalibrationConfig& calibration) {
+  return testWindow(camera, window, reference, drift, calibration, nullptr);
+}
+
+DriftWindowTest testDriftWindow(const CameraModel& camera,
+                                const std::vector<CalibrationPair>& window,
+                                const Extrinsic& reference, const DriftConfig& drift,
+                                const CalibrationConfig& calibration,
+                                const std::vector<ImageOffset>& offsets) {
+  return testWindow(camera, window, reference, drift, calibration, &offsets);
 }
 
 }  // namespace thermal_lidar_calibration

@@ -56,4 +56,34 @@ SignedRankResult signedRankTestGreater(const std::vector<double>& differences,
   return out;
 }
 
+SignedRankResult signedRankTestTwoSided(const std::vector<double>& differences,
+                                        double zero_tolerance) {
+  SignedRankResult out = signedRankTestGreater(differences, zero_tolerance);
+  std::vector<double> mirrored(differences.size());
+  std::transform(differences.begin(), differences.end(), mirrored.begin(),
+                 [](double v) { return -v; });
+  const double lower = signedRankTestGreater(mirrored, zero_tolerance).p_value;
+  if (out.n > 0) out.p_value = std::min(1.0, 2.0 * std::min(out.p_value, lower));
+  return out;
+}
+
+double hodgesLehmann(const std::vector<double>& values) {
+  std::vector<double> v;
+  for (double x : values) {
+    if (std::isfinite(x)) v.push_back(x);
+  }
+  if (v.empty()) return 0.0;
+  std::vector<double> walsh;
+  walsh.reserve(v.size() * (v.size() + 1) / 2);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    for (std::size_t j = i; j < v.size(); ++j) walsh.push_back(0.5 * (v[i] + v[j]));
+  }
+  const std::size_t mid = walsh.size() / 2;
+  std::nth_element(walsh.begin(), walsh.begin() + static_cast<long>(mid), walsh.end());
+  const double upper = walsh[mid];
+  if (walsh.size() % 2 == 1) return upper;
+  const double lower = *std::max_element(walsh.begin(), walsh.begin() + static_cast<long>(mid));
+  return 0.5 * (lower + upper);
+}
+
 }  // namespace thermal_lidar_calibration

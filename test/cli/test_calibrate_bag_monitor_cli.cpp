@@ -11,6 +11,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -92,21 +93,25 @@ TEST_F(CalibrateBagMonitorCli, ABumpIsConfirmedAfterItHappensWithTheTimelineBesi
   std::ifstream csv(dir_ + "/bump.drift.csv");
   std::string header, row;
   std::getline(csv, header);
-  EXPECT_EQ(header, "stamp,pairs_in_window,state,rotation_change_deg,translation_change_cm,loss_reference,loss_fit,pairs_seen,p_value,held_out_pairs,image_shift_px,pairs_used,changed");
+  EXPECT_EQ(header, "stamp,pairs_in_window,state,rotation_change_deg,translation_change_cm,loss_reference,loss_fit,pairs_seen,p_value,held_out_pairs,image_shift_px,pairs_used,changed,"
+                    "offset_x_px,offset_y_px,offset_p_value_x,offset_p_value_y,offset_pairs");
   int rows = 0, errors = 0;
   while (std::getline(csv, row)) {
     ++rows;
     const bool error = row.find(",ERROR,") != std::string::npos;
     errors += error;
     // The evidence columns: the first ERROR row is a changed test (ERROR only follows changed
-    // tests), and its p-value is below monitor_significance.
+    // tests), and one of its tests' p-values (held-out, offset across, offset down) is below
+    // monitor_significance.
     if (error && errors == 1) {
       std::vector<std::string> cells;
       std::stringstream fields(row);
       for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
-      ASSERT_EQ(cells.size(), 13u) << row;
+      ASSERT_EQ(cells.size(), 18u) << row;
       EXPECT_EQ(cells[12], "1") << row;
-      EXPECT_LT(std::stod(cells[8]), 0.01) << row;
+      EXPECT_LT(std::min({std::stod(cells[8]), std::stod(cells[15]), std::stod(cells[16])}), 0.01)
+          << row;
+      EXPECT_GT(std::stoi(cells[17]), 0) << row;
     }
   }
   EXPECT_GT(rows, 5);

@@ -1,7 +1,8 @@
 // The drift watch on streams of synthetic pairs (test/support): a rig that stays put must stay
 // OK (clean and with realistic mask and range noise), a 0.5 deg turn or a 3 cm shift mid-stream
-// must be confirmed within 30 pairs with the new extrinsic near the new truth, an accepted
-// update makes the new extrinsic the reference, and the same input gives the same verdicts.
+// must be confirmed within 30 pairs with the new extrinsic near the new truth, the image offset
+// test sees a shift too small for the losses, an accepted update makes the new extrinsic the
+// reference, and the same input gives the same verdicts.
 #include "thermal_lidar_calibration/core/drift_monitor.hpp"
 
 #include "../support/synthetic_pairs.hpp"
@@ -158,6 +159,46 @@ TEST(DriftMonitor, ConfirmsAThreeCentimetreShiftWithin30Pairs) {
   EXPECT_LT(translationErrorM(run.candidate->extrinsic, after), 0.02);
 }
 
+// The offset test on one window: seen against an extrinsic that puts the people 0.8 px to the
+// right, the window's offsets say -0.8 px across, significantly; against the truth, nothing.
+TEST(DriftMonitor, TheOffsetTestMeasuresHowFarThePeopleMovedInTheImage) {
+  const std::vector<CalibrationPair> window = firstPairs(stablePairs(true), 30);
+  const Extrinsic off_by = offsetInImage(fieldsafeTruth(), fieldsafeCamera(), Eigen::Vector2d(0.8, 0.0));
+  const DriftWindowTest moved =
+      testDriftWindow(fieldsafeCamera(), window, off_by, DriftConfig{}, singleThreaded());
+  EXPECT_NEAR(moved.offset_px.x(), -0.8, 0.2);
+  EXPECT_LT(moved.offset_p_value.x(), 0.001);
+  EXPECT_GT(moved.offset_pairs, 20u);
+  EXPECT_TRUE(moved.offset_changed);
+  EXPECT_TRUE(moved.changed());
+  EXPECT_EQ(moved.changed_p_value, moved.significant && moved.large ? moved.p_value
+                                                                    : moved.offset_p_value.x());
+  const DriftWindowTest stays =
+      testDriftWindow(fieldsafeCamera(), window, fieldsafeTruth(), DriftConfig{}, singleThreaded());
+  EXPECT_LT(std::abs(stays.offset_px.x()), 0.2);
+  EXPECT_FALSE(stays.offset_changed);
+  EXPECT_FALSE(stays.changed());
+}
+
+// A 2 cm sideways shift with realistic mask-edge noise moves the people about 1 px: the window
+// fits' losses cannot tell it from their own wander, the image offsets can. Off (minimum
+// offsets out of reach), the watch misses it within 30 pairs; on (the defaults), it confirms it.
+TEST(DriftMonitor, TheOffsetTestConfirmsASmallShiftTheLossesMiss) {
+  const Extrinsic before = fieldsafeTruth();
+  const Extrinsic after = bumped(before, Eigen::Vector3d::UnitX(), 0.0, Eigen::Vector3d(0.02, 0.0, 0.0));
+  const auto stream = concatenated(firstPairs(stablePairs(true), 45),
+                                   pairsSeenWith(after, 30, 72, true));
+  DriftConfig without_offsets;
+  without_offsets.min_offset_x_px = without_offsets.min_offset_y_px = 1e4;
+  for (const DriftConfig& config : {without_offsets, DriftConfig{}}) {
+    DriftMonitor m(fieldsafeCamera(), before, config, singleThreaded());
+    for (const CalibrationPair& p : stream) m.addPair(p);
+    const bool offsets_on = config.min_offset_x_px < 100.0;
+    EXPECT_EQ(m.firstErrorStamp().has_value(), offsets_on) << (offsets_on ? "on" : "off");
+    if (m.firstErrorStamp()) EXPECT_GE(*m.firstErrorStamp(), 145.0);  // after the shift
+  }
+}
+
 TEST(DriftMonitor, AcceptingAnEarlyUpdateOffersTheFinalOneLater) {
   const Extrinsic before = fieldsafeTruth();
   const Extrinsic after = bumped(before, Eigen::Vector3d(1.0, 0.2, -0.4), 0.5, Eigen::Vector3d::Zero());
@@ -245,6 +286,8 @@ TEST(DriftMonitor, SameInputSameVerdictsWhateverTheThreadCount) {
       EXPECT_EQ(a.test.fit.rotation_vector, b.test.fit.rotation_vector);
       EXPECT_EQ(a.test.fit.translation, b.test.fit.translation);
       EXPECT_EQ(a.test.loss_fit, b.test.loss_fit);
+      EXPECT_EQ(a.test.offset_px, b.test.offset_px);
+      EXPECT_EQ(a.test.offset_p_value, b.test.offset_p_value);
     }
   }
 }
@@ -272,5 +315,8 @@ TEST(DriftMonitor, RefusesABadConfig) {
                std::invalid_argument);
   config = DriftConfig{};
   config.significance = 0.0;
+  EXPECT_THROW(config.validate(), std::invalid_argument);
+  config = DriftConfig{};
+  config.min_offset_x_px = -0.1;
   EXPECT_THROW(config.validate(), std::invalid_argument);
 }

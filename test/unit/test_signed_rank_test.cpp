@@ -62,3 +62,29 @@ TEST(SignedRankTest, SymmetricNullGivesAboutUniformPValues) {
   EXPECT_GT(p, 0.3);
   EXPECT_LT(p, 0.7);
 }
+
+TEST(SignedRankTest, TwoSidedIsTwiceTheSmallerTail) {
+  // {-1, 2, 3}: P(W+ >= 5) = 2/8, P(W+ <= 5) = 7/8: two-sided 2 * 2/8.
+  const SignedRankResult r = signedRankTestTwoSided({-1.0, 2.0, 3.0});
+  EXPECT_DOUBLE_EQ(r.rank_sum_positive, 5.0);
+  EXPECT_DOUBLE_EQ(r.p_value, 0.5);
+  // Either direction alike.
+  EXPECT_DOUBLE_EQ(signedRankTestTwoSided({1.0, -2.0, -3.0}).p_value, 0.5);
+  std::vector<double> twenty(20);
+  for (int i = 0; i < 20; ++i) twenty[i] = -0.1 * (i + 1);
+  EXPECT_NEAR(signedRankTestTwoSided(twenty).p_value, std::ldexp(1.0, -19), 1e-18);
+  // Never above 1 (the two tails overlap at the middle).
+  EXPECT_DOUBLE_EQ(signedRankTestTwoSided({-1.0, 1.0}).p_value, 1.0);
+  EXPECT_DOUBLE_EQ(signedRankTestTwoSided({}).p_value, 1.0);
+}
+
+TEST(SignedRankTest, HodgesLehmannIsTheMedianOfTheWalshAverages) {
+  // Walsh averages of {1, 2, 3}: 1, 1.5, 2, 2, 2.5, 3: median 2.
+  EXPECT_DOUBLE_EQ(hodgesLehmann({3.0, 1.0, 2.0}), 2.0);
+  // {0, 0, 10}: 0, 0, 0, 5, 5, 10: median (0 + 5) / 2.
+  EXPECT_DOUBLE_EQ(hodgesLehmann({0.0, 0.0, 10.0}), 2.5);
+  // A wild value moves it little: {1, 2, 3, 1000}: ..., 2.5, 3, ...: (2.5 + 3) / 2.
+  EXPECT_DOUBLE_EQ(hodgesLehmann({1.0, 2.0, 3.0, 1000.0}), 2.75);
+  EXPECT_DOUBLE_EQ(hodgesLehmann({NAN, 4.0}), 4.0);
+  EXPECT_DOUBLE_EQ(hodgesLehmann({}), 0.0);
+}

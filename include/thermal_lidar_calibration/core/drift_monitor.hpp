@@ -19,6 +19,7 @@
 #include "thermal_lidar_calibration/core/drift_state.hpp"
 #include "thermal_lidar_calibration/core/drift_window_test.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
+#include "thermal_lidar_calibration/core/image_offset.hpp"
 
 #include <cstdint>
 #include <deque>
@@ -47,7 +48,7 @@ struct DriftCandidate {
   double change_stamp_s = 0.0;    // the first pair after the estimated change
   double stamp_s = 0.0;           // the newest pair it saw
   bool complete = false;          // rests on update_pairs pairs
-  double p_value = 1.0;           // of the window test that confirmed the change
+  double p_value = 1.0;           // of the window test that confirmed the change (changed_p_value)
   std::optional<double> first_warn_stamp_s, first_error_stamp_s;
 };
 
@@ -94,8 +95,11 @@ class DriftMonitor {
   struct Held {
     std::uint64_t seq;
     CalibrationPair pair;
+    ImageOffset offset;  // against reference_
   };
   std::vector<CalibrationPair> lastPairs(std::size_t n) const;
+  // The held pairs' image offsets against reference_, worked out again after it changed.
+  void updateOffsets();
   std::vector<CalibrationPair> pairsSince(std::uint64_t seq, std::size_t at_most) const;
   // Places the change among the held pairs: where they start fitting `fit` better than the
   // reference (change_point.hpp).

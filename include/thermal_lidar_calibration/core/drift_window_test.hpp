@@ -19,12 +19,20 @@
 // held-out test alone is not enough: the folds share the window's few scenes, and each scene
 // has its own loss optimum a few tenths of a degree from the truth, a real but small effect
 // (drift_config.hpp).
+//
+// The offset test (a window counts as changed when either test says so): each pair's image
+// offset against the reference (image_offset.hpp), the pan/tilt that centres its points in its
+// mask, needs no fit and so has none of a fit's wander. Across the image and down it
+// separately, the window's offsets (pairs the fit may use and that some offset explains: Eq. 1
+// within the threshold) go to a two-sided signed-rank test against zero; a change is a
+// significant offset whose Hodges-Lehmann centre reaches monitor_min_offset_x_px (or _y_px).
 
 #include "thermal_lidar_calibration/core/calibration_config.hpp"
 #include "thermal_lidar_calibration/core/calibration_pair.hpp"
 #include "thermal_lidar_calibration/core/camera_model.hpp"
 #include "thermal_lidar_calibration/core/drift_config.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
+#include "thermal_lidar_calibration/core/image_offset.hpp"
 
 #include <Eigen/Core>
 
@@ -60,7 +68,18 @@ struct DriftWindowTest {
   // loss_reference >= min_loss_ratio * loss_fit, and angle >= min_rotation_deg or distance >=
   // min_translation_cm: the change matters.
   bool large = false;
-  bool changed() const { return significant && large; }
+  // The offset test: the Hodges-Lehmann centre of the window's image offsets against the
+  // reference (x across, y down the image), the two-sided signed-rank p-values of each axis,
+  // and the pairs in it.
+  Eigen::Vector2d offset_px = Eigen::Vector2d::Zero();
+  Eigen::Vector2d offset_p_value = Eigen::Vector2d::Ones();
+  std::size_t offset_pairs = 0;
+  // An axis with offset_p_value < significance and |offset_px| >= min_offset_*_px.
+  bool offset_changed = false;
+  bool changed() const { return (significant && large) || offset_changed; }
+  // The p-value of what made the window count as changed: the held-out test's when it counted,
+  // else the smallest of the offset axes that counted (p_value when nothing counted).
+  double changed_p_value = 1.0;
   std::uint64_t evaluations = 0; // loss evaluations of all fits
 };
 
@@ -74,5 +93,13 @@ DriftWindowTest testDriftWindow(const CameraModel& camera,
                                 const std::vector<CalibrationPair>& window,
                                 const Extrinsic& reference, const DriftConfig& drift,
                                 const CalibrationConfig& calibration);
+// The same with each window pair's image offset against `reference` already known (the monitor
+// works each pair's out once, when it arrives): `offsets[i]` for window[i]. Throws
+// std::invalid_argument when the sizes differ.
+DriftWindowTest testDriftWindow(const CameraModel& camera,
+                                const std::vector<CalibrationPair>& window,
+                                const Extrinsic& reference, const DriftConfig& drift,
+                                const CalibrationConfig& calibration,
+                                const std::vector<ImageOffset>& offsets);
 
 }  // namespace thermal_lidar_calibration

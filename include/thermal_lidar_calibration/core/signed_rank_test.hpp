@@ -19,4 +19,15 @@ struct SignedRankResult {
 SignedRankResult signedRankTestGreater(const std::vector<double>& differences,
                                        double zero_tolerance = 0.0);
 
+// Two-sided: do the differences tend away from zero, either way? p = twice the smaller of the
+// two one-sided p-values, at most 1 (rank_sum_positive as above).
+SignedRankResult signedRankTestTwoSided(const std::vector<double>& differences,
+                                        double zero_tolerance = 0.0);
+
+// The Hodges-Lehmann estimate of the centre the signed-rank test is about: the median of the
+// Walsh averages (d_i + d_j) / 2, i <= j (non-finite values dropped; 0 when none is left).
+// Robust like the median (a mismatched pair's value weighs like any other), nearly as precise
+// as the mean on well-behaved data.
+double hodgesLehmann(const std::vector<double>& values);
+
 }  // namespace thermal_lidar_calibration
