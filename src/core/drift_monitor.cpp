@@ -29,7 +29,13 @@ bool DriftMonitor::withinUpdateBounds(const DriftChange& change) const {
 }
 
 std::size_t DriftMonitor::pairsInWindow() const {
-  return std::min(held_.size(), static_cast<std::size_t>(drift_.window_pairs));
+  return std::min(pairsSinceAccepted(), static_cast<std::size_t>(drift_.window_pairs));
+}
+
+std::size_t DriftMonitor::pairsSinceAccepted() const {
+  std::size_t n = 0;
+  for (const Held& h : held_) n += h.seq >= accepted_change_seq_ ? 1 : 0;
+  return n;
 }
 
 std::vector<CalibrationPair> DriftMonitor::lastPairs(std::size_t n) const {
@@ -76,11 +82,19 @@ std::optional<DriftRecord> DriftMonitor::addPair(CalibrationPair pair) {
       static_cast<std::size_t>(std::max(drift_.window_pairs, drift_.update_pairs));
   while (held_.size() > keep) held_.pop_front();
   ++since_test_;
-  if (held_.size() < static_cast<std::size_t>(drift_.window_pairs) ||
-      since_test_ < drift_.period_pairs) {
+  // A window holds only pairs of the rig in use: after an accepted update none from before the
+  // change it accepted (they show the old rig, and against the new reference they look like a
+  // change of their own).
+  const bool window_ready = pairsSinceAccepted() >= static_cast<std::size_t>(drift_.window_pairs);
+  if (since_test_ < drift_.period_pairs || (!window_ready && !settling_)) return std::nullopt;
+  since_test_ = 0;
+  if (!window_ready) {
+    // Accepted early, no window of the new rig yet: go on refitting the final candidate.
+    if (!(candidate_ && candidate_->complete)) fitCandidate(reference_);
+    seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() -
+                offset_seconds;
     return std::nullopt;
   }
-  since_test_ = 0;
 
   const std::vector<CalibrationPair> window = lastPairs(drift_.window_pairs);
   std::vector<ImageOffset> offsets;
@@ -137,8 +151,7 @@ void DriftMonitor::locateChange(const Extrinsic& fit) {
   // Only pairs since the last accepted change: older ones show a rig that is gone. They can
   // fit the new pose too (a bracket that seats back), and a split among them would hand the
   // new fit the pairs of the rig in between.
-  std::size_t since_accepted = 0;
-  for (const Held& h : held_) since_accepted += h.seq >= accepted_change_seq_ ? 1 : 0;
+  const std::size_t since_accepted = pairsSinceAccepted();
   if (since_accepted == 0) return;
   const std::vector<CalibrationPair> held = lastPairs(since_accepted);
   const LossEvaluator bilinear(

@@ -10,7 +10,9 @@
 // Accepting the candidate makes it the reference. Accepted before it is final (auto-update at
 // the moment of confirmation), the monitor goes on fitting the pairs since the change and
 // offers the final one again once it has them (updateReady()), so an early update is followed
-// by an accurate one. ROS-free; the node and calibrate_bag --monitor drive it alike.
+// by an accurate one. After an accepted update the tests wait for a window of pairs since the
+// change it accepted: older pairs show the old rig. ROS-free; the node and calibrate_bag
+// --monitor drive it alike.
 
 #include "thermal_lidar_calibration/core/calibration_config.hpp"
 #include "thermal_lidar_calibration/core/calibration_pair.hpp"
@@ -87,7 +89,7 @@ class DriftMonitor {
   // (DriftConfig::max_update_*): the change is there, but not one the watch can refit.
   std::uint64_t candidatesRefused() const { return candidates_refused_; }
   std::uint64_t pairsSeen() const { return next_seq_; }
-  std::size_t pairsInWindow() const;
+  std::size_t pairsInWindow() const;  // of the rig in use (since the last accepted change)
   double secondsInTests() const { return seconds_; }  // all steps so far
   const DriftConfig& config() const { return drift_; }
 
@@ -98,6 +100,8 @@ class DriftMonitor {
     ImageOffset offset;  // against reference_
   };
   std::vector<CalibrationPair> lastPairs(std::size_t n) const;
+  // Held pairs since the last accepted change (all of them before any).
+  std::size_t pairsSinceAccepted() const;
   // The held pairs' image offsets against reference_, worked out again after it changed.
   void updateOffsets();
   std::vector<CalibrationPair> pairsSince(std::uint64_t seq, std::size_t at_most) const;
