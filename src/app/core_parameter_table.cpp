@@ -95,6 +95,11 @@ void addDriftRows(ParameterTable<CoreParameters>& t) {
                 "cross-fitting folds of the held-out test", "at most monitor_window_pairs / 3");
   drift.integer("monitor_update_pairs", &DriftConfig::update_pairs, {6, 100000}, "",
                 "pairs since a confirmed change the new extrinsic is fitted on before it is final");
+  drift.real("monitor_update_full_significance", &DriftConfig::update_full_significance,
+             aboveRange(0, 1), "",
+             "the new extrinsic is the better of a turn about the camera centre and a shift, unless the "
+             "full pose predicts held-out pairs better with a signed-rank p-value below this (1: always "
+             "the full pose)");
   drift.integer("monitor_fit_max_evaluations", &DriftConfig::fit_max_evaluations, {1, 100000000}, "",
                 "loss evaluations per refinement of a drift fit");
   drift.real("monitor_max_update_rotation_deg", &DriftConfig::max_update_rotation_deg,

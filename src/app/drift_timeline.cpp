@@ -116,6 +116,8 @@ void writeDriftResult(const std::string& path, const DriftTimeline& timeline,
     out << YAML::Key << "loss_reference" << YAML::Value << c.loss_reference;
     out << YAML::Key << "loss_fit" << YAML::Value << c.loss_fit;
     out << YAML::Key << "p_value" << YAML::Value << c.p_value;
+    out << YAML::Key << "model" << YAML::Value << toString(c.model);
+    out << YAML::Key << "full_p_value" << YAML::Value << c.full_p_value;
     out << YAML::EndMap;
   }
   out << YAML::EndMap;

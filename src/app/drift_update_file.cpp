@@ -61,6 +61,8 @@ void writeDriftUpdateFile(const std::string& path, const std::string& lidar_fram
     out << YAML::Key << "pairs_used" << YAML::Value << c.pairs_used;
     out << YAML::Key << "p_value" << YAML::Value << c.p_value;
     out << YAML::Key << "complete" << YAML::Value << c.complete;
+    out << YAML::Key << "model" << YAML::Value << toString(c.model);
+    out << YAML::Key << "full_p_value" << YAML::Value << c.full_p_value;
     out << YAML::EndMap;
   }
   out << YAML::EndSeq << YAML::EndMap;

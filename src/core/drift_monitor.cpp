@@ -1,7 +1,7 @@
 #include "thermal_lidar_calibration/core/drift_monitor.hpp"
 
 #include "thermal_lidar_calibration/core/change_point.hpp"
-#include "thermal_lidar_calibration/core/inlier_selection.hpp"
+#include "thermal_lidar_calibration/core/drift_update_fit.hpp"
 #include "thermal_lidar_calibration/core/local_fit.hpp"
 #include "thermal_lidar_calibration/core/loss.hpp"
 
@@ -176,16 +176,15 @@ void DriftMonitor::fitCandidate(const Extrinsic& start) {
   if (!change_seq_) return;
   const std::vector<CalibrationPair> pairs =
       pairsSince(*change_seq_, static_cast<std::size_t>(drift_.update_pairs));
-  if (pairs.size() < 6) return;
+  if (pairs.size() < std::max<std::size_t>(6, 2 * static_cast<std::size_t>(drift_.folds))) return;
+  const DriftUpdateFit update =
+      fitDriftUpdate(camera_, pairs, reference_, start, drift_, calibration_);
+  const LocalFit& fit = update.fit;
   const LossEvaluator nearest(
       camera_, pairs, LossConfig{calibration_.behind_camera_penalty_c1, PixelRule::kNearest});
-  const LocalRefinement refinement(nearest.withPixelRule(PixelRule::kBilinear),
-                                   driftRefineConfig(drift_, calibration_),
-                                   calibration_.num_threads);
-  const LocalFit fit = fitLocally(nearest, refinement, start,
-                                  refinementCandidates(nearest, calibration_.refine.exclude_truncated),
-                                  calibration_);
   DriftCandidate c;
+  c.model = update.model;
+  c.full_p_value = update.full_p_value;
   c.extrinsic = fit.estimate;
   c.change = driftChange(fit.estimate, reference_);
   if (!withinUpdateBounds(c.change)) {

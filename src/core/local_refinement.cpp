@@ -25,15 +25,24 @@ Extrinsic fromVector(const Vector6& v, const Eigen::Vector3d& pivot) {
 
 }  // namespace
 
-LocalRefinement::LocalRefinement(const LossEvaluator& loss, RefineConfig config, int threads)
-    : loss_(loss), config_(config), threads_(threads) {
+LocalRefinement::LocalRefinement(const LossEvaluator& loss, RefineConfig config, int threads,
+                                 RefineFreedom freedom)
+    : loss_(loss), config_(config), threads_(threads), freedom_(freedom) {
   config_.validate();
 }
 
 RefineOutcome LocalRefinement::run(const Extrinsic& start, const std::vector<std::size_t>& pairs,
                                    const RefineCallback& callback) const {
   RefineOutcome out;
-  const Eigen::Vector3d pivot = loss_.centroid(pairs);
+  // A camera turn: pivot at the camera centre (in the LiDAR frame, -R^T t), where s = 0; a
+  // search over r alone, s held, then turns the camera about its own centre. A camera shift:
+  // r held, s (so t) searched.
+  const bool turn_only = freedom_ == RefineFreedom::kCameraTurn;
+  const Eigen::Vector3d pivot =
+      turn_only ? Eigen::Vector3d(-(start.rotationMatrix().transpose() * start.translation))
+                : loss_.centroid(pairs);
+  const int first = freedom_ == RefineFreedom::kCameraShift ? 3 : 0;
+  const int last = turn_only ? 3 : 6;
   Vector6 x = toVector(start, pivot);
   Vector6 step;
   step << Eigen::Vector3d::Constant(config_.initial_step_rot_rad),
@@ -72,7 +81,7 @@ RefineOutcome LocalRefinement::run(const Extrinsic& start, const std::vector<std
     ++out.iterations;
     // Exploratory probes: +-step along each parameter, evaluated together (one parallel batch).
     std::vector<Extrinsic> probes;
-    for (int k = 0; k < 6; ++k) {
+    for (int k = first; k < last; ++k) {
       for (double sign : {1.0, -1.0}) {
         Vector6 y = x;
         y[k] += sign * step[k];
@@ -83,13 +92,14 @@ RefineOutcome LocalRefinement::run(const Extrinsic& start, const std::vector<std
     Vector6 combined = Vector6::Zero();
     int best_probe = -1;
     double best_loss = fx;
-    for (int k = 0; k < 6; ++k) {
-      const double plus = losses[2 * k], minus = losses[2 * k + 1];
+    for (int k = first; k < last; ++k) {
+      const int probe = 2 * (k - first);
+      const double plus = losses[probe], minus = losses[probe + 1];
       if (std::min(plus, minus) < fx) combined[k] = plus <= minus ? step[k] : -step[k];
       for (int j = 0; j < 2; ++j) {
-        if (losses[2 * k + j] < best_loss) {
-          best_loss = losses[2 * k + j];
-          best_probe = 2 * k + j;
+        if (losses[probe + j] < best_loss) {
+          best_loss = losses[probe + j];
+          best_probe = probe + j;
         }
       }
     }

@@ -161,7 +161,7 @@ TEST(Parameters, QualityThresholdsAreValidatedAcrossKeys) {
 
 TEST(Parameters, DescribeListsEveryCoreKeyOnce) {
   const auto described = describeCoreParameters(CoreParameters{});
-  EXPECT_EQ(described.size(), 65u);  // 34 of the method and gating, 17 quality (issue 8), 14 drift (9)
+  EXPECT_EQ(described.size(), 66u);  // 34 of the method and gating, 17 quality (issue 8), 15 drift (9)
   for (const auto& kv : described) {
     const auto& known = knownParameterKeys();
     EXPECT_NE(std::find(known.begin(), known.end(), kv.first), known.end()) << kv.first;

@@ -78,3 +78,39 @@ TEST(LossEvaluator, CentroidIsThePointWeightedMeanOfThePairs) {
   EXPECT_TRUE(loss.centroid({}).isApprox(Eigen::Vector3d(2, 4.0 / 3.0, 2)));
   EXPECT_TRUE(loss.centroid({0, 1}).isApprox(loss.centroid({})));
 }
+
+// The drift watch's simpler models: a camera turn keeps the camera where it is (its centre in
+// the LiDAR frame, -R^T t) and finds the turn; a camera shift keeps the rotation and finds the
+// shift. Started from the truth turned (or shifted) away, each comes back to it.
+TEST(LocalRefinement, ACameraTurnOrShiftAloneComesBackToTheTruth) {
+  test_support::SyntheticPairsOptions o;
+  o.pairs = 30;
+  o.seed = 9;
+  const auto data = test_support::makeSyntheticPairs(fieldsafeCamera(), fieldsafeTruth(), o);
+  const LossEvaluator bilinear(fieldsafeCamera(), data, LossConfig{5.0, PixelRule::kBilinear});
+  std::vector<std::size_t> all(data.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  const Extrinsic truth = fieldsafeTruth();
+  auto centre = [](const Extrinsic& e) -> Eigen::Vector3d {
+    return -(e.rotationMatrix().transpose() * e.translation);
+  };
+
+  // Turned 0.4 deg about the camera centre: R' = D R, t' = D t.
+  const Eigen::Matrix3d D =
+      Eigen::AngleAxisd(0.4 * kDeg, Eigen::Vector3d(0.6, -0.8, 0.0)).toRotationMatrix();
+  const Extrinsic turned = Extrinsic::fromRotationMatrix(D * truth.rotationMatrix(), D * truth.translation);
+  const LocalRefinement turn(bilinear, RefineConfig{}, 1, RefineFreedom::kCameraTurn);
+  const RefineOutcome back = turn.run(turned, all);
+  EXPECT_LT((centre(back.best) - centre(turned)).norm(), 1e-9) << "the camera moved";
+  EXPECT_LT(rotationErrorRad(back.best, truth), 0.1 * kDeg);  // as the full search above
+  EXPECT_LT(translationErrorM(back.best, truth), 0.005);
+
+  Extrinsic shifted = truth;
+  shifted.translation += Eigen::Vector3d(0.025, -0.02, 0.0);
+  const LocalRefinement shift(bilinear, RefineConfig{}, 1, RefineFreedom::kCameraShift);
+  const RefineOutcome moved = shift.run(shifted, all);
+  EXPECT_EQ(moved.best.rotation_vector, shifted.rotation_vector) << "the camera turned";
+  EXPECT_LT(translationErrorM(moved.best, truth), 0.005);
+  // The full search from the same start may trade the shift for a turn; these cannot.
+  EXPECT_LE(moved.loss, bilinear.loss(shifted));
+}

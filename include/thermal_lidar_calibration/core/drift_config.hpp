@@ -46,6 +46,13 @@ struct DriftConfig {
   // since the change; it is final once it rests on this many (a 30-pair window leaves the
   // translation a few cm uncertain on a typical drive, 60 pairs about 1 cm).
   int update_pairs = 60;
+  // monitor_update_full_significance: the new extrinsic is the simpler of a turn of the camera
+  // about its own centre and a shift without a turn, unless the full pose predicts held-out
+  // pairs better with a one-sided signed-rank p-value below this (drift_update_fit.hpp); 1:
+  // always the full pose. A few dozen pairs hardly split a small change between a turn and a
+  // shift, and a full fit wanders along that valley (60 pairs after a 0.5 deg turn: full fits
+  // 1-3 cm, once 16 cm, from the new truth; the turn alone 0.3-0.6 cm).
+  double update_full_significance = 0.01;
   // monitor_fit_max_evaluations: loss evaluations per refinement run of a drift fit (the
   // calibration's refine_max_evaluations when lower). A window fit from the reference needs
   // about a thousand; on a window that cannot pin the pose down the search would otherwise

@@ -19,6 +19,7 @@
 #include "thermal_lidar_calibration/core/camera_model.hpp"
 #include "thermal_lidar_calibration/core/drift_config.hpp"
 #include "thermal_lidar_calibration/core/drift_state.hpp"
+#include "thermal_lidar_calibration/core/drift_update_fit.hpp"
 #include "thermal_lidar_calibration/core/drift_window_test.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
 #include "thermal_lidar_calibration/core/image_offset.hpp"
@@ -50,6 +51,10 @@ struct DriftCandidate {
   double change_stamp_s = 0.0;    // the first pair after the estimated change
   double stamp_s = 0.0;           // the newest pair it saw
   bool complete = false;          // rests on update_pairs pairs
+  // The motion fitted (drift_update_fit.hpp: turn, shift or full pose) and the held-out p-value
+  // of the full pose against the simpler model.
+  DriftUpdateModel model = DriftUpdateModel::kFull;
+  double full_p_value = 1.0;
   double p_value = 1.0;           // of the window test that confirmed the change (changed_p_value)
   std::optional<double> first_warn_stamp_s, first_error_stamp_s;
 };

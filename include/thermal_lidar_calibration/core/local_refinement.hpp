@@ -29,10 +29,17 @@ struct RefineOutcome {
 using RefineCallback = std::function<bool(int iteration, double loss, const Extrinsic& best,
                                           std::uint64_t evaluations)>;
 
+// What the search may change (the drift watch's simpler models of a bump, drift_update_fit.hpp).
+// kCameraTurn: only the rotation, about the camera's own centre (R' = D R, t' = D t for a turn
+// D: the camera stays where it is). kCameraShift: only the translation (the camera moves
+// without turning).
+enum class RefineFreedom : std::uint8_t { kFull, kCameraTurn, kCameraShift };
+
 class LocalRefinement {
  public:
   // `loss` (normally the bilinear evaluator) must outlive the refinement.
-  LocalRefinement(const LossEvaluator& loss, RefineConfig config, int threads);
+  LocalRefinement(const LossEvaluator& loss, RefineConfig config, int threads,
+                  RefineFreedom freedom = RefineFreedom::kFull);
   RefineOutcome run(const Extrinsic& start, const std::vector<std::size_t>& pairs,
                     const RefineCallback& callback = {}) const;
 
@@ -40,6 +47,7 @@ class LocalRefinement {
   const LossEvaluator& loss_;
   RefineConfig config_;
   int threads_;
+  RefineFreedom freedom_;
 };
 
 }  // namespace thermal_lidar_calibration
