@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
 # Re-measures the drift watch's figures in the README (issue 9), with calibrate_bag --monitor (the
 # node's monitor mode runs the same DriftMonitor on the same kept pairs):
-#   bumps: 240 s drives, a 0.5 deg turn or a 3 cm shift at 60 s, clean and realistic noise,
+#   bumps: 240 s drives, a 0.5 deg turn, a 3 cm shift, or both together at 60 s, clean and
+#          realistic noise,
 #          seeds 1-5: kept pairs from the change to the first ERROR (the pair that completed the
 #          confirming window counted, the pairs before the change as make_synthetic_bag reports
 #          them), and the new fit against the new truth;
 #   stable: 20-minute drives (12000 frames) without a change, clean and realistic, seeds 7-9:
 #          WARN and ERROR tests (false alarms), and the watch's CPU time per second of drive.
 # Each drive's timeline (WORK_DIR/NAME.drift.csv) keeps every test's evidence (p-value, losses,
-# change) for a closer look. About an hour on the 2-core VM of the README.
+# change) for a closer look. About 70 minutes on the 2-core VM of the README.
 # Usage: scripts/drift_validation.sh [WORK_DIR]   (default /tmp/tlc_drift_validation; ~2 GB)
 set -euo pipefail
 # shellcheck source=scripts/workspace.sh
@@ -33,6 +34,8 @@ for noise in clean realistic; do
       --extrinsic-change-at 60 --extrinsic-change 0.5,0
     run "shift_${noise}_$seed" --frames 2400 --seed "$seed" --noise "$noise" \
       --extrinsic-change-at 60 --extrinsic-change 0,3
+    run "both_${noise}_$seed" --frames 2400 --seed "$seed" --noise "$noise" \
+      --extrinsic-change-at 60 --extrinsic-change 0.5,3
   done
   for seed in 7 8 9; do
     run "stable_${noise}_$seed" --frames 12000 --seed "$seed" --noise "$noise"
@@ -65,7 +68,7 @@ def rows(name):
 print("bumps (240 s, change at 60 s):")
 print("  run                   pairs to ERROR   new fit vs new truth")
 for noise in ("clean", "realistic"):
-    for kind in ("turn", "shift"):
+    for kind in ("turn", "shift", "both"):
         for seed in (1, 2, 3, 4, 5):
             name = f"{kind}_{noise}_{seed}"
             truth = yaml.safe_load(open(f"{work}/{name}.truth.yaml"))
@@ -87,7 +90,7 @@ for noise in ("clean", "realistic"):
             if result["drift"].get("candidate"):
                 d = angle_deg(after["rotation_vector"], result["rotation_vector"])
                 t = 100 * math.dist(after["translation"], result["translation"])
-                fit = f"{d:.3f} deg / {t:.2f} cm"
+                fit = f"{d:.3f} deg / {t:.2f} cm ({result['drift']['candidate']['model']})"
             false_before = sum(1 for x in before if x["state"] != "OK")
             note = f"  ({false_before} WARN/ERROR before the change)" if false_before else ""
             print(f"  {name:<21} {pairs:<16} {fit}{note}")
