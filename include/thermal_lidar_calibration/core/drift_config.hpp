@@ -35,7 +35,8 @@ struct DriftConfig {
   // by a pixel; the offsets do (a 3 cm shift across the image moves them 0.3-1 px at the
   // synthetic drives' ranges). On six 20-minute synthetic drives (seeds 7-9, clean and
   // realistic noise) the windows whose offsets were significant reached at most 0.26 px across
-  // and 2.7 px down: a scene-dependent bias of the offsets, which the p-value alone calls real.
+  // and 2.7 px down (four more such drives, not used to choose: 0.25 and 2.8): a
+  // scene-dependent bias of the offsets, which the p-value alone calls real.
   // Down the image a pair's offset scatters ~2.5 px (the LiDAR's rings sample a person's height
   // coarsely), so only about 0.3 deg of tilt counts there; a 0.5 deg turn moves people 1.4-6 px
   // across. The grid reaches 12 px: larger minimum offsets turn the test off.
