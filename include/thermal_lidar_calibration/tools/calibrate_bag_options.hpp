@@ -18,8 +18,8 @@ struct CalibrateBagOptions {
   std::string clusters_topic = "/lidar/human_clusters";
   std::string camera_info_topic = "/thermal/camera_info";
   std::string points_topic = "/lidar/points";  // raw cloud, read with --detect
-  bool detect = false;
-  bool monitor = false;  // --monitor: the drift watch against --reference instead of a calibration  // --detect: the built-in person detectors on the raw image and points
+  bool detect = false;   // --detect: the built-in person detectors on the raw image and points
+  bool monitor = false;  // --monitor: the drift watch against --reference instead of a calibration
   std::string camera_info_file;  // --camera-info: wins over the bag's CameraInfo
   std::optional<int> algorithm;  // 1 | 2
   std::optional<std::string> refine;  // none | local
