@@ -30,6 +30,13 @@ std::uint64_t mixSeed(std::uint64_t seed, std::uint64_t stream, std::uint64_t in
   return z;
 }
 
+Extrinsic bumpedExtrinsic(const Extrinsic& e, const Eigen::Vector3d& axis, double degrees,
+                          const Eigen::Vector3d& shift_m) {
+  const Eigen::Matrix3d turn =
+      Eigen::AngleAxisd(degrees * M_PI / 180.0, axis.normalized()).toRotationMatrix();
+  return Extrinsic::fromRotationMatrix(turn * e.rotationMatrix(), e.translation + shift_m);
+}
+
 void SyntheticConfig::validate() const {
   if (frames < 1 || frames > 100000) throw std::invalid_argument("frames must be in [1, 100000]");
   if (!(frame_rate_hz > 0.0 && frame_rate_hz <= 100.0)) {
@@ -124,10 +131,8 @@ void SyntheticRig::drawChange() {
   change_.translation_cm = c.translation_cm;
   change_.axis = randomUnit();
   change_.translation_direction = randomUnit();
-  const Eigen::Matrix3d bump = Eigen::AngleAxisd(c.rotation_deg * M_PI / 180.0, change_.axis).toRotationMatrix();
-  change_.after = Extrinsic::fromRotationMatrix(
-      bump * config_.rig.truth.rotationMatrix(),
-      config_.rig.truth.translation + 0.01 * c.translation_cm * change_.translation_direction);
+  change_.after = bumpedExtrinsic(config_.rig.truth, change_.axis, c.rotation_deg,
+                                  0.01 * c.translation_cm * change_.translation_direction);
   renderer_after_ = std::make_unique<ThermalRenderer>(config_.rig.camera, change_.after, groundZ());
 }
 

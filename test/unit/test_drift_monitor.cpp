@@ -6,6 +6,7 @@
 #include "thermal_lidar_calibration/core/drift_monitor.hpp"
 
 #include "../support/synthetic_pairs.hpp"
+#include "thermal_lidar_calibration/synthetic/synthetic_rig.hpp"
 #include "thermal_lidar_calibration/synthetic/noise_model.hpp"
 
 #include <gtest/gtest.h>
@@ -17,19 +18,12 @@
 
 using namespace thermal_lidar_calibration;
 using test_support::fieldsafeCamera;
+using synthetic::bumpedExtrinsic;
 using test_support::fieldsafeTruth;
 
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
-
-// The truth after a bump: turned by `degrees` about `axis` and shifted by `shift_m`, both in
-// the camera frame (as make_synthetic_bag --extrinsic-change does).
-Extrinsic bumped(const Extrinsic& e, const Eigen::Vector3d& axis, double degrees,
-                 const Eigen::Vector3d& shift_m) {
-  const Eigen::Matrix3d turn = Eigen::AngleAxisd(degrees * kDeg, axis.normalized()).toRotationMatrix();
-  return Extrinsic::fromRotationMatrix(turn * e.rotationMatrix(), e.translation + shift_m);
-}
 
 // `count` pairs seen with `truth`; with `noisy`, the realistic preset's mask edges (+-2 px) and
 // 2 cm range noise.
@@ -125,7 +119,7 @@ TEST(DriftMonitor, StaysOkOnAStableRigCleanAndNoisy) {
 
 TEST(DriftMonitor, ConfirmsAHalfDegreeTurnWithin30PairsAndFitsTheNewTruth) {
   const Extrinsic before = fieldsafeTruth();
-  const Extrinsic after = bumped(before, Eigen::Vector3d(0.3, -0.8, 0.5), 0.5, Eigen::Vector3d::Zero());
+  const Extrinsic after = bumpedExtrinsic(before, Eigen::Vector3d(0.3, -0.8, 0.5), 0.5, Eigen::Vector3d::Zero());
   const auto stream = concatenated(firstPairs(stablePairs(false), 45),
                                    pairsSeenWith(after, 63, 32, false));
   const MonitorRun run = monitor(stream, before);
@@ -148,7 +142,7 @@ TEST(DriftMonitor, ConfirmsAHalfDegreeTurnWithin30PairsAndFitsTheNewTruth) {
 
 TEST(DriftMonitor, ConfirmsAThreeCentimetreShiftWithin30Pairs) {
   const Extrinsic before = fieldsafeTruth();
-  const Extrinsic after = bumped(before, Eigen::Vector3d::UnitX(), 0.0, Eigen::Vector3d(0.025, -0.015, 0.006));
+  const Extrinsic after = bumpedExtrinsic(before, Eigen::Vector3d::UnitX(), 0.0, Eigen::Vector3d(0.025, -0.015, 0.006));
   const auto stream = concatenated(firstPairs(stablePairs(false), 45),
                                    pairsSeenWith(after, 63, 42, false));
   const MonitorRun run = monitor(stream, before);
@@ -185,7 +179,7 @@ TEST(DriftMonitor, TheOffsetTestMeasuresHowFarThePeopleMovedInTheImage) {
 // offsets out of reach), the watch misses it within 30 pairs; on (the defaults), it confirms it.
 TEST(DriftMonitor, TheOffsetTestConfirmsASmallShiftTheLossesMiss) {
   const Extrinsic before = fieldsafeTruth();
-  const Extrinsic after = bumped(before, Eigen::Vector3d::UnitX(), 0.0, Eigen::Vector3d(0.02, 0.0, 0.0));
+  const Extrinsic after = bumpedExtrinsic(before, Eigen::Vector3d::UnitX(), 0.0, Eigen::Vector3d(0.02, 0.0, 0.0));
   const auto stream = concatenated(firstPairs(stablePairs(true), 45),
                                    pairsSeenWith(after, 30, 72, true));
   DriftConfig without_offsets;
@@ -201,7 +195,7 @@ TEST(DriftMonitor, TheOffsetTestConfirmsASmallShiftTheLossesMiss) {
 
 TEST(DriftMonitor, AcceptingAnEarlyUpdateOffersTheFinalOneLater) {
   const Extrinsic before = fieldsafeTruth();
-  const Extrinsic after = bumped(before, Eigen::Vector3d(1.0, 0.2, -0.4), 0.5, Eigen::Vector3d::Zero());
+  const Extrinsic after = bumpedExtrinsic(before, Eigen::Vector3d(1.0, 0.2, -0.4), 0.5, Eigen::Vector3d::Zero());
   const auto stream = concatenated(firstPairs(stablePairs(false), 36),
                                    pairsSeenWith(after, 51, 52, false));
   DriftConfig config;
@@ -227,7 +221,7 @@ TEST(DriftMonitor, AcceptingAnEarlyUpdateOffersTheFinalOneLater) {
 // and the final update follows.
 TEST(DriftMonitor, AfterAnEarlyUpdateTheOldRigsPairsAreNotTestedAgainstIt) {
   const Extrinsic before = fieldsafeTruth();
-  const Extrinsic after = bumped(before, Eigen::Vector3d(-0.4, -0.9, 0.0), 0.5, Eigen::Vector3d::Zero());
+  const Extrinsic after = bumpedExtrinsic(before, Eigen::Vector3d(-0.4, -0.9, 0.0), 0.5, Eigen::Vector3d::Zero());
   const auto stream = concatenated(firstPairs(stablePairs(false), 45),
                                    pairsSeenWith(after, 63, 82, false));
   DriftConfig config;
@@ -261,7 +255,7 @@ TEST(DriftMonitor, AfterAnEarlyUpdateTheOldRigsPairsAreNotTestedAgainstIt) {
 // from pairs back to the start of the drive).
 TEST(DriftMonitor, ALaterChangeIsPlacedAfterTheAcceptedOne) {
   const Extrinsic before = fieldsafeTruth();
-  const Extrinsic after = bumped(before, Eigen::Vector3d(1.0, 0.2, -0.4), 0.5, Eigen::Vector3d::Zero());
+  const Extrinsic after = bumpedExtrinsic(before, Eigen::Vector3d(1.0, 0.2, -0.4), 0.5, Eigen::Vector3d::Zero());
   const std::vector<CalibrationPair> turned = pairsSeenWith(after, 30, 52, false);
   const std::vector<CalibrationPair> seated_back = pairsSeenWith(before, 60, 53, false);
   const auto stream = concatenated(concatenated(firstPairs(stablePairs(false), 60), turned),
@@ -282,7 +276,7 @@ TEST(DriftMonitor, ALaterChangeIsPlacedAfterTheAcceptedOne) {
 // 0.5 deg bump refitted to 172 deg and 75 m on windows that could not pin the pose down).
 TEST(DriftMonitor, NeverOffersANewExtrinsicBeyondTheUpdateBounds) {
   const Extrinsic before = fieldsafeTruth();
-  const Extrinsic after = bumped(before, Eigen::Vector3d(0.3, -0.8, 0.5), 0.5, Eigen::Vector3d::Zero());
+  const Extrinsic after = bumpedExtrinsic(before, Eigen::Vector3d(0.3, -0.8, 0.5), 0.5, Eigen::Vector3d::Zero());
   const auto stream = concatenated(firstPairs(stablePairs(false), 45),
                                    pairsSeenWith(after, 63, 32, false));
   DriftConfig config;
@@ -303,7 +297,7 @@ TEST(DriftMonitor, NeverOffersANewExtrinsicBeyondTheUpdateBounds) {
 
 TEST(DriftMonitor, SameInputSameVerdictsWhateverTheThreadCount) {
   const Extrinsic before = fieldsafeTruth();
-  const Extrinsic after = bumped(before, Eigen::Vector3d(0.0, 1.0, 0.0), 0.5, Eigen::Vector3d::Zero());
+  const Extrinsic after = bumpedExtrinsic(before, Eigen::Vector3d(0.0, 1.0, 0.0), 0.5, Eigen::Vector3d::Zero());
   const auto stream = concatenated(firstPairs(stablePairs(true), 30),
                                    pairsSeenWith(after, 27, 62, true));
   const MonitorRun one = monitor(stream, before, 1);

@@ -5,6 +5,7 @@
 #include "thermal_lidar_calibration/core/drift_update_fit.hpp"
 
 #include "../support/synthetic_pairs.hpp"
+#include "thermal_lidar_calibration/synthetic/synthetic_rig.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,18 +15,12 @@
 
 using namespace thermal_lidar_calibration;
 using test_support::fieldsafeCamera;
+using synthetic::bumpedExtrinsic;
 using test_support::fieldsafeTruth;
 
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
-
-// As make_synthetic_bag --extrinsic-change: R' = Rot(axis, degrees) R, t' = t + shift.
-Extrinsic bumped(const Extrinsic& e, const Eigen::Vector3d& axis, double degrees,
-                 const Eigen::Vector3d& shift_m) {
-  const Eigen::Matrix3d turn = Eigen::AngleAxisd(degrees * kDeg, axis.normalized()).toRotationMatrix();
-  return Extrinsic::fromRotationMatrix(turn * e.rotationMatrix(), e.translation + shift_m);
-}
 
 std::vector<CalibrationPair> pairsSeenWith(const Extrinsic& truth, std::uint64_t seed) {
   test_support::SyntheticPairsOptions o;
@@ -44,7 +39,7 @@ CalibrationConfig singleThreaded() {
 
 TEST(DriftUpdateFit, AfterATurnTheTurnAboutTheCameraCentre) {
   const Extrinsic before = fieldsafeTruth();
-  const Extrinsic after = bumped(before, Eigen::Vector3d(0.3, -0.8, 0.5), 0.5, Eigen::Vector3d::Zero());
+  const Extrinsic after = bumpedExtrinsic(before, Eigen::Vector3d(0.3, -0.8, 0.5), 0.5, Eigen::Vector3d::Zero());
   const DriftUpdateFit u = fitDriftUpdate(fieldsafeCamera(), pairsSeenWith(after, 11), before,
                                           before, DriftConfig{}, singleThreaded());
   EXPECT_EQ(u.model, DriftUpdateModel::kTurn) << "full p " << u.full_p_value;
@@ -57,7 +52,7 @@ TEST(DriftUpdateFit, AfterATurnTheTurnAboutTheCameraCentre) {
 
 TEST(DriftUpdateFit, AfterAShiftTheShiftWithoutATurn) {
   const Extrinsic before = fieldsafeTruth();
-  const Extrinsic after = bumped(before, Eigen::Vector3d::UnitX(), 0.0, Eigen::Vector3d(0.025, -0.015, 0.006));
+  const Extrinsic after = bumpedExtrinsic(before, Eigen::Vector3d::UnitX(), 0.0, Eigen::Vector3d(0.025, -0.015, 0.006));
   const DriftUpdateFit u = fitDriftUpdate(fieldsafeCamera(), pairsSeenWith(after, 12), before,
                                           before, DriftConfig{}, singleThreaded());
   EXPECT_EQ(u.model, DriftUpdateModel::kShift) << "full p " << u.full_p_value;
@@ -67,7 +62,7 @@ TEST(DriftUpdateFit, AfterAShiftTheShiftWithoutATurn) {
 
 TEST(DriftUpdateFit, ABumpThatTurnsAndShiftsClearlyTakesTheFullPose) {
   const Extrinsic before = fieldsafeTruth();
-  const Extrinsic after = bumped(before, Eigen::Vector3d(0.0, 1.0, 0.0), 0.5, Eigen::Vector3d(-0.08, 0.0, 0.0));
+  const Extrinsic after = bumpedExtrinsic(before, Eigen::Vector3d(0.0, 1.0, 0.0), 0.5, Eigen::Vector3d(-0.08, 0.0, 0.0));
   const DriftUpdateFit u = fitDriftUpdate(fieldsafeCamera(), pairsSeenWith(after, 13), before,
                                           before, DriftConfig{}, singleThreaded());
   EXPECT_EQ(u.model, DriftUpdateModel::kFull) << "full p " << u.full_p_value;
@@ -78,7 +73,7 @@ TEST(DriftUpdateFit, ABumpThatTurnsAndShiftsClearlyTakesTheFullPose) {
 
 TEST(DriftUpdateFit, SignificanceOneAlwaysTakesTheFullPose) {
   const Extrinsic before = fieldsafeTruth();
-  const Extrinsic after = bumped(before, Eigen::Vector3d(0.3, -0.8, 0.5), 0.5, Eigen::Vector3d::Zero());
+  const Extrinsic after = bumpedExtrinsic(before, Eigen::Vector3d(0.3, -0.8, 0.5), 0.5, Eigen::Vector3d::Zero());
   DriftConfig config;
   config.update_full_significance = 1.0;
   const DriftUpdateFit u = fitDriftUpdate(fieldsafeCamera(), pairsSeenWith(after, 11), before,

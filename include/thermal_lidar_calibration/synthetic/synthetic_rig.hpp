@@ -43,6 +43,11 @@ struct ExtrinsicChangeConfig {
   bool enabled() const { return at_s >= 0.0; }
 };
 
+// `e` after a bump: turned by `degrees` about `axis` (any length) and shifted by `shift_m`, both
+// in the camera frame: R' = Rot(axis, degrees) R, t' = t + shift_m.
+Extrinsic bumpedExtrinsic(const Extrinsic& e, const Eigen::Vector3d& axis, double degrees,
+                          const Eigen::Vector3d& shift_m);
+
 // The change as drawn for this seed.
 struct ExtrinsicChange {
   bool enabled = false;
