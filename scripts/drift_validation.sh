@@ -61,6 +61,18 @@ def angle_deg(a, b):
     trace = sum(A[m][i] * B[m][i] for i in range(3) for m in range(3))  # trace(A^T B)
     return math.degrees(math.acos(max(-1.0, min(1.0, (trace - 1) / 2))))
 
+def rotation_between_deg(est, ref):  # w with R_est = exp([w]x) R_ref (core/pose_difference.hpp)
+    A, B = matrix(est), matrix(ref)
+    M = [[sum(A[i][m] * B[j][m] for m in range(3)) for j in range(3)] for i in range(3)]  # A B^T
+    th = math.acos(max(-1.0, min(1.0, (M[0][0] + M[1][1] + M[2][2] - 1) / 2)))
+    if th < 1e-12:
+        return [0.0, 0.0, 0.0]
+    k = th / (2 * math.sin(th))
+    return [math.degrees(k * v) for v in (M[2][1] - M[1][2], M[0][2] - M[2][0], M[1][0] - M[0][1])]
+
+held = [0] * 6  # candidates whose 95 % interval holds the new truth, per axis
+candidates = 0
+
 def rows(name):
     with open(f"{work}/{name}.drift.csv") as f:
         return list(csv.DictReader(f))
@@ -91,10 +103,22 @@ for noise in ("clean", "realistic"):
                 d = angle_deg(after["rotation_vector"], result["rotation_vector"])
                 t = 100 * math.dist(after["translation"], result["translation"])
                 fit = f"{d:.3f} deg / {t:.2f} cm ({result['drift']['candidate']['model']})"
+                u = result["drift"]["candidate"].get("uncertainty")
+                if u:
+                    diff = rotation_between_deg(result["rotation_vector"], after["rotation_vector"]) + [
+                        100 * (a - b) for a, b in zip(result["translation"], after["translation"])]
+                    half = u["rotation_deg"] + u["translation_cm"]
+                    inside = [abs(x) <= h for x, h in zip(diff, half)]
+                    held = [h + i for h, i in zip(held, inside)]
+                    candidates += 1
+                    fit += f", intervals hold {sum(inside)}/6"
             false_before = sum(1 for x in before if x["state"] != "OK")
             note = f"  ({false_before} WARN/ERROR before the change)" if false_before else ""
             print(f"  {name:<21} {pairs:<16} {fit}{note}")
 
+if candidates:
+    print(f"  the new fits' 95 % intervals held the new truth (rot x, y, z; trans x, y, z): "
+          f"{', '.join(str(h) for h in held)} of {candidates}")
 print("stable (20 minutes, 12000 frames):")
 for noise in ("clean", "realistic"):
     for seed in (7, 8, 9):

@@ -100,6 +100,10 @@ void addDriftRows(ParameterTable<CoreParameters>& t) {
              "the new extrinsic is the better of a turn about the camera centre and a shift, unless the "
              "full pose predicts held-out pairs better with a signed-rank p-value below this (1: always "
              "the full pose)");
+  drift.integer("monitor_update_uncertainty_resamples", &DriftConfig::update_uncertainty_resamples,
+                {0, 100000}, "",
+                "the new extrinsic's 95 % intervals per axis: block-bootstrap resamples over its pairs, each a "
+                "6-DOF refinement from it (0: none; else at least 2)");
   drift.integer("monitor_fit_max_evaluations", &DriftConfig::fit_max_evaluations, {1, 100000000}, "",
                 "loss evaluations per refinement of a drift fit");
   drift.real("monitor_max_update_rotation_deg", &DriftConfig::max_update_rotation_deg,

@@ -1,5 +1,6 @@
 #include "thermal_lidar_calibration/app/drift_timeline.hpp"
 
+#include "thermal_lidar_calibration/app/quality_output.hpp"
 #include "thermal_lidar_calibration/app/result_file.hpp"
 
 #include <opencv2/imgproc.hpp>
@@ -118,6 +119,7 @@ void writeDriftResult(const std::string& path, const DriftTimeline& timeline,
     out << YAML::Key << "p_value" << YAML::Value << c.p_value;
     out << YAML::Key << "model" << YAML::Value << toString(c.model);
     out << YAML::Key << "full_p_value" << YAML::Value << c.full_p_value;
+    if (c.uncertainty) emitUncertainty(out, *c.uncertainty);
     out << YAML::EndMap;
   }
   out << YAML::EndMap;

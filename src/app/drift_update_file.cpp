@@ -2,6 +2,7 @@
 
 #include "thermal_lidar_calibration/app/drift_update_file.hpp"
 
+#include "thermal_lidar_calibration/app/quality_output.hpp"
 #include "thermal_lidar_calibration/app/result_file.hpp"
 
 #include <yaml-cpp/yaml.h>
@@ -63,6 +64,7 @@ void writeDriftUpdateFile(const std::string& path, const std::string& lidar_fram
     out << YAML::Key << "complete" << YAML::Value << c.complete;
     out << YAML::Key << "model" << YAML::Value << toString(c.model);
     out << YAML::Key << "full_p_value" << YAML::Value << c.full_p_value;
+    if (c.uncertainty) emitUncertainty(out, *c.uncertainty);
     out << YAML::EndMap;
   }
   out << YAML::EndSeq << YAML::EndMap;

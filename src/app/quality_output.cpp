@@ -21,21 +21,22 @@ std::string format3(const char* format, const Eigen::Vector3d& v) {
 
 }  // namespace
 
+void emitUncertainty(YAML::Emitter& out, const Uncertainty& u) {
+  out << YAML::Key << "uncertainty" << YAML::Value << YAML::BeginMap;
+  emit3(out, "rotation_deg", u.rotation_deg);
+  emit3(out, "translation_cm", u.translation_cm);
+  out << YAML::Key << "method" << YAML::Value << "bootstrap";
+  out << YAML::Key << "description" << YAML::Value << u.method();
+  out << YAML::Key << "confidence" << YAML::Value << u.confidence;
+  out << YAML::Key << "resamples" << YAML::Value << u.resamples;
+  out << YAML::Key << "block_pairs" << YAML::Value << u.block_pairs;
+  out << YAML::Key << "pairs" << YAML::Value << u.pairs;
+  out << YAML::Key << "run_time_s" << YAML::Value << u.seconds;
+  out << YAML::EndMap;
+}
+
 void emitQuality(YAML::Emitter& out, const QualityAssessment& q) {
-  if (q.uncertainty) {
-    const Uncertainty& u = *q.uncertainty;
-    out << YAML::Key << "uncertainty" << YAML::Value << YAML::BeginMap;
-    emit3(out, "rotation_deg", u.rotation_deg);
-    emit3(out, "translation_cm", u.translation_cm);
-    out << YAML::Key << "method" << YAML::Value << "bootstrap";
-    out << YAML::Key << "description" << YAML::Value << u.method();
-    out << YAML::Key << "confidence" << YAML::Value << u.confidence;
-    out << YAML::Key << "resamples" << YAML::Value << u.resamples;
-    out << YAML::Key << "block_pairs" << YAML::Value << u.block_pairs;
-    out << YAML::Key << "pairs" << YAML::Value << u.pairs;
-    out << YAML::Key << "run_time_s" << YAML::Value << u.seconds;
-    out << YAML::EndMap;
-  }
+  if (q.uncertainty) emitUncertainty(out, *q.uncertainty);
   const Coverage& c = q.coverage;
   out << YAML::Key << "coverage" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "grid_columns" << YAML::Value << c.grid_columns;
@@ -80,6 +81,11 @@ void emitQuality(YAML::Emitter& out, const QualityAssessment& q) {
     emitExtrinsic(out, r.reference);
     out << YAML::EndMap;
   }
+}
+
+std::string formatHalfWidths(const Uncertainty& u) {
+  return format3("+-[%.3f, %.3f, %.3f] deg, ", u.rotation_deg) +
+         format3("+-[%.2f, %.2f, %.2f] cm", u.translation_cm);
 }
 
 std::string formatQualitySummary(const QualityAssessment& q) {

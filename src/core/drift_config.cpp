@@ -18,6 +18,9 @@ void DriftConfig::validate() const {
   requireRange("monitor_folds", folds, 2, window_pairs / 3);
   requireRange("monitor_update_pairs", update_pairs, 6, 100000);
   requireRange("monitor_update_full_significance", update_full_significance, 0.0, 1.0, true);
+  if (update_uncertainty_resamples != 0) {
+    requireRange("monitor_update_uncertainty_resamples", update_uncertainty_resamples, 2, 100000);
+  }
   requireRange("monitor_fit_max_evaluations", fit_max_evaluations, 1, 100000000);
   requireRange("monitor_max_update_rotation_deg", max_update_rotation_deg, 0.0, 180.0);
   requireRange("monitor_max_update_translation_cm", max_update_translation_cm, 0.0, 1e5);

@@ -205,6 +205,13 @@ void DriftMonitor::fitCandidate(const Extrinsic& start) {
   c.p_value = confirm_p_value_;
   c.first_warn_stamp_s = machine_.firstWarnStamp();
   c.first_error_stamp_s = machine_.firstErrorStamp();
+  if (drift_.update_uncertainty_resamples > 0 && fit.used.size() >= 3) {
+    UncertaintyConfig u = UncertaintyConfig::quick();
+    u.resamples = drift_.update_uncertainty_resamples;
+    u.seed = calibration_.seed;
+    u.num_threads = calibration_.num_threads;
+    c.uncertainty = estimateUncertainty(nearest, fit.estimate, fit.used, u);
+  }
   candidate_ = c;
 }
 

@@ -6,6 +6,7 @@
 
 #include "thermal_lidar_calibration/node/calibration_node.hpp"
 
+#include "thermal_lidar_calibration/app/quality_output.hpp"
 #include "thermal_lidar_calibration/app/static_transform_command.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 
@@ -193,6 +194,15 @@ void CalibrationNode::fillDriftStatus(CalibrationStatus& msg) const {
   msg.drift_loss_fit = latest.loss_fit;
   msg.drift_update_available = updateAvailable(s);
   msg.drift_updates = static_cast<std::uint32_t>(drift_history_.size());
+  if (s.candidate) {
+    msg.drift_update_model = toString(s.candidate->model);
+    if (s.candidate->uncertainty) {
+      for (int i = 0; i < 3; ++i) {
+        msg.drift_update_rotation_halfwidth_deg[i] = s.candidate->uncertainty->rotation_deg[i];
+        msg.drift_update_translation_halfwidth_cm[i] = s.candidate->uncertainty->translation_cm[i];
+      }
+    }
+  }
   for (int i = 0; i < 3; ++i) {
     msg.rotation_vector[i] = s.reference.rotation_vector[i];
     msg.translation[i] = s.reference.translation[i];
@@ -221,6 +231,10 @@ void CalibrationNode::diagnoseDrift(NodeDiagnostics::Status& status) const {
   status.add("pairs in window", s.pairs_in_window);
   status.add("tests", s.tests);
   status.add("update available", updateAvailable(s) ? "yes: ~accept_update" : "no");
+  if (s.candidate) {
+    status.add("new fit model", toString(s.candidate->model));
+    if (s.candidate->uncertainty) status.add("new fit 95 % half-widths", formatHalfWidths(*s.candidate->uncertainty));
+  }
   status.add("updates accepted", drift_history_.size());
   if (s.candidates_refused > 0) {
     status.add("new fits refused (beyond monitor_max_update_*)", s.candidates_refused);

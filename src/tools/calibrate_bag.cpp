@@ -11,6 +11,7 @@
 #include "thermal_lidar_calibration/app/drift_timeline.hpp"
 #include "thermal_lidar_calibration/app/camera_info_file.hpp"
 #include "thermal_lidar_calibration/app/progress_line.hpp"
+#include "thermal_lidar_calibration/app/quality_output.hpp"
 #include "thermal_lidar_calibration/app/result_file.hpp"
 #include "thermal_lidar_calibration/app/unknown_parameters.hpp"
 #include "thermal_lidar_calibration/node/parameter_catalog.hpp"
@@ -167,6 +168,15 @@ int runDriftWatch(const CalibrateBagOptions& options, const CoreParameters& para
               stamp(timeline.first_warn_stamp_s).c_str(), stamp(timeline.first_error_stamp_s).c_str());
   std::printf("  change           %s against %s%s\n", line, options.reference.c_str(),
               timeline.candidate ? " (the new extrinsic, fitted on the pairs since the change)" : " (latest window)");
+  if (timeline.candidate) {
+    const DriftCandidate& c = *timeline.candidate;
+    std::printf("  new fit          %s, on %zu pairs since the change%s\n", toString(c.model), c.pairs,
+                c.complete ? "" : " (not final: fewer than monitor_update_pairs)");
+    if (c.uncertainty) {
+      std::printf("  95 %% intervals   %s about / along camera x, y, z (what the pairs pin down)\n",
+                  formatHalfWidths(*c.uncertainty).c_str());
+    }
+  }
   std::printf("  files            %s, %s, %s\n", options.output.c_str(), csv.c_str(), png.c_str());
   std::printf("  monitor time     %.2f s for %zu tests\n", timeline.seconds, timeline.records.size());
   std::fflush(stdout);

@@ -89,6 +89,19 @@ TEST_F(CalibrateBagMonitorCli, ABumpIsConfirmedAfterItHappensWithTheTimelineBesi
   EXPECT_LT(angle_deg, 0.15);
   EXPECT_LT((t_fit - t_truth).norm(), 0.02);
   EXPECT_LE(y["drift"]["first_error_stamp"].as<double>(), at + 35.0) << "confirmed too late";
+  // The new fit says which motion it is and how far its pairs pin it down, in the file and the
+  // summary.
+  const YAML::Node candidate = y["drift"]["candidate"];
+  ASSERT_TRUE(candidate);
+  EXPECT_TRUE(candidate["model"]);
+  ASSERT_TRUE(candidate["uncertainty"]);
+  for (const char* key : {"rotation_deg", "translation_cm"}) {
+    ASSERT_EQ(candidate["uncertainty"][key].size(), 3u) << key;
+    for (int i = 0; i < 3; ++i) EXPECT_GT(candidate["uncertainty"][key][i].as<double>(), 0.0) << key;
+  }
+  EXPECT_NE(r.out.find("95 % intervals"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("new fit          " + candidate["model"].as<std::string>()), std::string::npos)
+      << r.out;
 
   std::ifstream csv(dir_ + "/bump.drift.csv");
   std::string header, row;

@@ -29,12 +29,17 @@ namespace {
 struct Timeline {
   std::mutex mutex;
   std::vector<std::pair<double, std::string>> states;
+  // A ~status that named the new extrinsic's model with its 95 % half-widths.
+  bool saw_update_intervals = false;
 };
 Timeline g_timeline;
 
 void onStatusTimeline(const CalibrationStatus::ConstPtr& msg) {
   std::lock_guard<std::mutex> lock(g_timeline.mutex);
   g_timeline.states.emplace_back(msg->header.stamp.toSec(), msg->drift_state);
+  if (!msg->drift_update_model.empty() && msg->drift_update_translation_halfwidth_cm[0] > 0.0) {
+    g_timeline.saw_update_intervals = true;
+  }
 }
 
 // The player is done: no new input image for `quiet_s` of wall time (after at least one).
@@ -152,6 +157,16 @@ TEST(NodeMonitor, ConfirmsTheBumpAndPublishesTheNewExtrinsic) {
   ASSERT_TRUE(result["drift_updates"]) << result_file;
   EXPECT_EQ(result["drift_updates"].size(), g_observed.last_status.drift_updates);
   EXPECT_EQ(result["drift_updates"][0]["accepted_by"].as<std::string>(), "auto_update");
+  // Each update says what motion was fitted and how far its pairs pin it down.
+  const YAML::Node last_update = result["drift_updates"][result["drift_updates"].size() - 1];
+  EXPECT_TRUE(last_update["model"]) << result_file;
+  ASSERT_TRUE(last_update["uncertainty"]) << result_file;
+  EXPECT_EQ(last_update["uncertainty"]["translation_cm"].size(), 3u);
+  EXPECT_GT(last_update["uncertainty"]["translation_cm"][0].as<double>(), 0.0);
+  {
+    std::lock_guard<std::mutex> timeline_lock(g_timeline.mutex);
+    EXPECT_TRUE(g_timeline.saw_update_intervals) << "no ~status named the new fit's model and intervals";
+  }
   const Extrinsic from_file = thermal_lidar_calibration::readExtrinsicFile(result_file);
   EXPECT_LT(thermal_lidar_calibration::rotationErrorRad(from_file, published), 1e-6);
   EXPECT_LT(thermal_lidar_calibration::translationErrorM(from_file, published), 1e-6);

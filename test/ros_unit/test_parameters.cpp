@@ -157,11 +157,20 @@ TEST(Parameters, QualityThresholdsAreValidatedAcrossKeys) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("uncertainty_resamples"), std::string::npos) << e.what();
   }
+  // The drift candidate's intervals: 0 turns them off, one resample is no interval.
+  EXPECT_EQ(loadText("monitor_update_uncertainty_resamples: 0\n").drift.update_uncertainty_resamples, 0);
+  try {
+    loadText("monitor_update_uncertainty_resamples: 1\n");
+    FAIL() << "1 resample was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("monitor_update_uncertainty_resamples"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(Parameters, DescribeListsEveryCoreKeyOnce) {
   const auto described = describeCoreParameters(CoreParameters{});
-  EXPECT_EQ(described.size(), 66u);  // 34 of the method and gating, 17 quality (issue 8), 15 drift (9)
+  EXPECT_EQ(described.size(), 67u);  // 34 of the method and gating, 17 quality (issue 8), 16 drift (9)
   for (const auto& kv : described) {
     const auto& known = knownParameterKeys();
     EXPECT_NE(std::find(known.begin(), known.end(), kv.first), known.end()) << kv.first;

@@ -7,6 +7,7 @@
 
 #include "../support/synthetic_pairs.hpp"
 #include "thermal_lidar_calibration/synthetic/synthetic_rig.hpp"
+#include "thermal_lidar_calibration/core/pose_difference.hpp"
 #include "thermal_lidar_calibration/synthetic/noise_model.hpp"
 
 #include <gtest/gtest.h>
@@ -65,10 +66,10 @@ struct MonitorRun {
 };
 
 MonitorRun monitor(const std::vector<CalibrationPair>& stream, const Extrinsic& reference,
-            int threads = 1) {
+            int threads = 1, const DriftConfig& drift = {}) {
   CalibrationConfig calibration;
   calibration.num_threads = threads;
-  DriftMonitor m(fieldsafeCamera(), reference, DriftConfig{}, calibration);
+  DriftMonitor m(fieldsafeCamera(), reference, drift, calibration);
   MonitorRun run;
   for (const CalibrationPair& p : stream) {
     if (auto r = m.addPair(p)) run.records.push_back(*r);
@@ -89,6 +90,18 @@ CalibrationConfig singleThreaded() {
   CalibrationConfig calibration;
   calibration.num_threads = 1;
   return calibration;
+}
+
+// The candidate's 95 % intervals hold the new truth on every axis, and are real intervals.
+void expectIntervalsHold(const DriftCandidate& candidate, const Extrinsic& truth) {
+  ASSERT_TRUE(candidate.uncertainty);
+  const Uncertainty& u = *candidate.uncertainty;
+  EXPECT_EQ(u.resamples, DriftConfig{}.update_uncertainty_resamples);
+  const Eigen::Matrix<double, 6, 1> d = asVector(poseDifference(candidate.extrinsic, truth));
+  for (int k = 0; k < 6; ++k) {
+    EXPECT_GT(u.halfWidth(k), 0.0) << "axis " << k;
+    EXPECT_LE(std::abs(d[k]), u.halfWidth(k)) << "axis " << k << " (rotation deg 0-2, cm 3-5)";
+  }
 }
 
 // Feeds `stream` to `m`, taking every update as soon as one is ready (~auto_update).
@@ -151,6 +164,18 @@ TEST(DriftMonitor, ConfirmsAThreeCentimetreShiftWithin30Pairs) {
   ASSERT_TRUE(run.candidate);
   EXPECT_LT(rotationErrorRad(run.candidate->extrinsic, after), 0.15 * kDeg);
   EXPECT_LT(translationErrorM(run.candidate->extrinsic, after), 0.02);
+  // Intervals come with it (on these exact masks they are narrower than the candidate's few mm
+  // of error: they measure what the pairs pin down, not the choice of model).
+  ASSERT_TRUE(run.candidate->uncertainty);
+  EXPECT_EQ(run.candidate->uncertainty->resamples, DriftConfig{}.update_uncertainty_resamples);
+  // Without intervals (monitor_update_uncertainty_resamples 0) the same candidate, bare.
+  DriftConfig bare;
+  bare.update_uncertainty_resamples = 0;
+  const MonitorRun without = monitor(stream, before, 1, bare);
+  ASSERT_TRUE(without.candidate);
+  EXPECT_FALSE(without.candidate->uncertainty);
+  EXPECT_EQ(without.candidate->extrinsic.translation, run.candidate->extrinsic.translation);
+  EXPECT_EQ(without.candidate->extrinsic.rotation_vector, run.candidate->extrinsic.rotation_vector);
 }
 
 // The offset test on one window: seen against an extrinsic that puts the people 0.8 px to the
@@ -318,6 +343,15 @@ TEST(DriftMonitor, SameInputSameVerdictsWhateverTheThreadCount) {
       EXPECT_EQ(a.test.offset_p_value, b.test.offset_p_value);
     }
   }
+  ASSERT_TRUE(one.candidate && one.candidate->uncertainty);
+  for (const MonitorRun* other : {&again, &two}) {
+    ASSERT_TRUE(other->candidate && other->candidate->uncertainty);
+    EXPECT_EQ(one.candidate->extrinsic.rotation_vector, other->candidate->extrinsic.rotation_vector);
+    EXPECT_EQ(one.candidate->uncertainty->rotation_deg, other->candidate->uncertainty->rotation_deg);
+    EXPECT_EQ(one.candidate->uncertainty->translation_cm, other->candidate->uncertainty->translation_cm);
+  }
+  // With mask-edge and range noise (what the intervals are for), they hold the new truth.
+  expectIntervalsHold(*one.candidate, after);
 }
 
 TEST(DriftMonitor, TestsEveryPeriodOnceTheWindowIsFull) {

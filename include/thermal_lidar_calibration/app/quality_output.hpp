@@ -10,6 +10,12 @@
 
 namespace thermal_lidar_calibration {
 
+// The `uncertainty:` block (half-widths per axis and how they were made), into an open map.
+void emitUncertainty(YAML::Emitter& out, const Uncertainty& uncertainty);
+
+// "+-[0.100, 0.050, 0.200] deg, +-[1.50, 4.00, 2.00] cm": the half-widths about camera x, y, z.
+std::string formatHalfWidths(const Uncertainty& uncertainty);
+
 // uncertainty, coverage, verdict, verdict_reasons and (when known) reference, into the map the
 // caller has opened.
 void emitQuality(YAML::Emitter& out, const QualityAssessment& quality);

@@ -54,6 +54,11 @@ struct DriftConfig {
   // shift, and a full fit wanders along that valley (60 pairs after a 0.5 deg turn: full fits
   // 1-3 cm, once 16 cm, from the new truth; the turn alone 0.3-0.6 cm).
   double update_full_significance = 0.01;
+  // monitor_update_uncertainty_resamples: a candidate comes with 95 % intervals per axis from a
+  // block bootstrap over its pairs (uncertainty.hpp, the quick setting), each resample a full
+  // 6-DOF refinement from the candidate, so the intervals say what the pairs pin down whatever
+  // model was chosen (a turn's translation is kept, not measured); 0: none.
+  int update_uncertainty_resamples = 30;
   // monitor_fit_max_evaluations: loss evaluations per refinement run of a drift fit (the
   // calibration's refine_max_evaluations when lower). A window fit from the reference needs
   // about a thousand; on a window that cannot pin the pose down the search would otherwise

@@ -23,6 +23,7 @@
 #include "thermal_lidar_calibration/core/drift_window_test.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
 #include "thermal_lidar_calibration/core/image_offset.hpp"
+#include "thermal_lidar_calibration/core/uncertainty.hpp"
 
 #include <cstdint>
 #include <deque>
@@ -56,6 +57,8 @@ struct DriftCandidate {
   DriftUpdateModel model = DriftUpdateModel::kFull;
   double full_p_value = 1.0;
   double p_value = 1.0;           // of the window test that confirmed the change (changed_p_value)
+  // 95 % intervals per axis about the candidate (monitor_update_uncertainty_resamples > 0).
+  std::optional<Uncertainty> uncertainty;
   std::optional<double> first_warn_stamp_s, first_error_stamp_s;
 };
 
