@@ -11,6 +11,7 @@
 //                  verdict and shape of the object holding most of its points
 //   lidar false    a detected person matching nobody: range, shape
 
+#include "thermal_lidar_calibration/detection/detection_scoring.hpp"
 #include "thermal_lidar_calibration/detection/lidar_person_detector.hpp"
 #include "thermal_lidar_calibration/detection/thermal_person_segmenter.hpp"
 
@@ -23,14 +24,16 @@
 namespace thermal_lidar_calibration {
 namespace bench {
 
-// truth_ids: CV_16UC1 person ids; scored: the scored person ids; detected_mask: CV_8UC1.
+// The misses and false detections are the scorer's (`score`, from detection::scoreMask on the
+// same masks); truth_ids: CV_16UC1 person ids; detected_mask: CV_8UC1.
 void explainThermal(std::FILE* out, double stamp_s, const detection::ThermalSegmentation& segmentation,
-                    const cv::Mat& detected_mask, const cv::Mat& truth_ids, const std::vector<std::uint32_t>& scored);
+                    const detection::FrameScore& score, const cv::Mat& detected_mask, const cv::Mat& truth_ids);
 
-// truth: per input point, the person id (0 = none); scored: the scored person ids.
+// The same for the LiDAR (`score` from detection::scoreClusters on `detection`); truth: per input
+// point, the person id (0 = none).
 void explainLidar(std::FILE* out, double stamp_s, const detection::LidarDetection& detection,
-                  const std::vector<Eigen::Vector3f>& points, const std::vector<std::uint32_t>& truth,
-                  const std::vector<std::uint32_t>& scored);
+                  const detection::FrameScore& score, const std::vector<Eigen::Vector3f>& points,
+                  const std::vector<std::uint32_t>& truth);
 
 }  // namespace bench
 }  // namespace thermal_lidar_calibration

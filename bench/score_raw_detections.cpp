@@ -68,14 +68,6 @@ std::vector<det::TruthPerson> thermalPeople(const cv::Mat& truth) {
   return people;
 }
 
-std::vector<std::uint32_t> scoredIds(const std::vector<det::TruthPerson>& people) {
-  std::vector<std::uint32_t> ids;
-  for (const auto& p : people) {
-    if (p.scored) ids.push_back(p.id);
-  }
-  return ids;
-}
-
 std::vector<det::TruthPerson> lidarPeople(const std::vector<Eigen::Vector3f>& points,
                                           const std::vector<std::uint32_t>& truth, const tlc::DetectionParameters& p) {
   std::map<std::uint32_t, std::pair<Eigen::Vector3f, int>> sums;
@@ -140,10 +132,9 @@ int main(int argc, char** argv) {
         std::vector<std::uint32_t> detected_truth;
         for (int index : out.detection.indices) detected_truth.push_back(truth[static_cast<std::size_t>(index)]);
         const std::vector<det::TruthPerson> people = lidarPeople(points, truth, params);
-        lidar.add(det::scoreClusters(out.detection.labels, detected_truth, people));
-        if (explain) {
-          tlc::bench::explainLidar(stdout, cloud->header.stamp.toSec(), out.detection, points, truth, scoredIds(people));
-        }
+        const det::FrameScore frame = det::scoreClusters(out.detection.labels, detected_truth, people);
+        lidar.add(frame);
+        if (explain) tlc::bench::explainLidar(stdout, cloud->header.stamp.toSec(), out.detection, frame, points, truth);
         std::vector<std::uint32_t> near_labels, near_truth;
         for (std::size_t k = 0; k < out.detection.labels.size(); ++k) {
           const std::uint32_t label = out.detection.labels[k];
@@ -160,12 +151,9 @@ int main(int argc, char** argv) {
       const tlc::ros_io::SegmentedImage seg = adapter.segment(image, "/thermal/image_raw");
       const cv::Mat truth = tlc::ros_io::decodeMonoImage(*mask, "/truth/thermal_person_ids");
       const cv::Mat detected = tlc::ros_io::decodeMonoImage(*seg.mask, "mask");
-      const std::vector<det::TruthPerson> people = thermalPeople(truth);
-      thermal.add(det::scoreMask(detected, truth, people));
-      if (explain) {
-        tlc::bench::explainThermal(stdout, image->header.stamp.toSec(), seg.segmentation, detected, truth,
-                                   scoredIds(people));
-      }
+      const det::FrameScore frame = det::scoreMask(detected, truth, thermalPeople(truth));
+      thermal.add(frame);
+      if (explain) tlc::bench::explainThermal(stdout, image->header.stamp.toSec(), seg.segmentation, frame, detected, truth);
       image.reset();
       mask.reset();
     }

@@ -65,11 +65,14 @@ FrameScore matchDetections(const std::map<std::uint32_t, std::map<std::uint32_t,
       ++score.true_positives;
     } else {
       ++score.false_positives;
+      score.false_detections.push_back({d, majority});
     }
   }
   for (std::uint32_t t : scored) {
-    const auto it = std::find_if(match.begin(), match.end(), [&](const auto& dm) { return dm.second == t; });
-    if (it == match.end()) ++score.false_negatives;
+    if (!taken.count(t)) {
+      ++score.false_negatives;
+      score.missed_people.push_back(t);
+    }
   }
   score.detected = score.true_positives + score.false_positives;
   return score;

@@ -41,6 +41,13 @@ TEST(ScoreMask, MatchesAtIouHalfAndIgnoresPeopleWhoAreNotScored) {
   EXPECT_EQ(s.detected, 3);
   EXPECT_EQ(s.scored_people, 2);
   EXPECT_FALSE(s.countsAgree());
+  // Which ones (for --explain): person 2 missed; mask 2 mostly on person 2, mask 4 on nobody.
+  EXPECT_EQ(s.missed_people, std::vector<std::uint32_t>{2});
+  ASSERT_EQ(s.false_detections.size(), 2u);
+  EXPECT_EQ(s.false_detections[0].detection, 2u);
+  EXPECT_EQ(s.false_detections[0].majority, 2u);
+  EXPECT_EQ(s.false_detections[1].detection, 4u);
+  EXPECT_EQ(s.false_detections[1].majority, 0u);
 }
 
 TEST(ScoreMask, IouOfExactlyOneHalfMatchesAndLessDoesNot) {
@@ -98,6 +105,11 @@ TEST(ScoreClusters, PurityOfEightyPercentAndOneClusterPerPerson) {
   EXPECT_EQ(s.false_positives, 3);
   EXPECT_EQ(s.false_negatives, 1);
   EXPECT_EQ(s.ignored, 1);
+  EXPECT_EQ(s.missed_people, std::vector<std::uint32_t>{2});
+  ASSERT_EQ(s.false_detections.size(), 3u);  // clusters 2, 4, 5: mostly person 2, a bush, person 1
+  EXPECT_EQ(s.false_detections[0].majority, 2u);
+  EXPECT_EQ(s.false_detections[1].majority, 0u);
+  EXPECT_EQ(s.false_detections[2].majority, 1u);
   // Exactly 80 % is a match.
   EXPECT_EQ(scoreClusters({7, 7, 7, 7, 7}, {2, 2, 2, 2, 0}, kPeople).true_positives, 1);
   EXPECT_EQ(scoreClusters({7, 7, 7, 7, 7, 7}, {2, 2, 2, 2, 0, 0}, kPeople).true_positives, 0);

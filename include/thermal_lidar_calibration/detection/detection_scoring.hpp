@@ -28,6 +28,15 @@ struct FrameScore {
   int ignored = 0;          // detections of people who are not scored
   int detected = 0;         // detections that are not ignored (TP + FP)
   int scored_people = 0;
+  // Which ones, for explaining a score (score_raw_detections --explain): the scored people
+  // without a matching detection, and each detection counted false with the truth id it mostly
+  // covers (0 = background: a confounder; else a scored person it matched too poorly).
+  std::vector<std::uint32_t> missed_people;
+  struct FalseDetection {
+    std::uint32_t detection = 0;
+    std::uint32_t majority = 0;
+  };
+  std::vector<FalseDetection> false_detections;
   bool countsAgree() const { return detected == scored_people; }
 };
 
