@@ -69,14 +69,15 @@ void DriftMonitor::updateOffsets() {
 
 std::optional<DriftRecord> DriftMonitor::addPair(CalibrationPair pair) {
   pair.image.release();
+  // The watch's own time for this pair, whichever way it returns (seconds()).
   const auto started = std::chrono::steady_clock::now();
+  auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  };
   // Its image offset against the reference, once (the tests of the next windows share it).
   const LossEvaluator bilinear(
       camera_, {pair}, LossConfig{calibration_.behind_camera_penalty_c1, PixelRule::kBilinear});
   const ImageOffset offset = pairImageOffset(bilinear, 0, reference_, {}, calibration_.num_threads);
-  const double offset_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  seconds_ += offset_seconds;
   held_.push_back({next_seq_++, std::move(pair), offset});
   const std::size_t keep =
       static_cast<std::size_t>(std::max(drift_.window_pairs, drift_.update_pairs));
@@ -86,13 +87,15 @@ std::optional<DriftRecord> DriftMonitor::addPair(CalibrationPair pair) {
   // change it accepted (they show the old rig, and against the new reference they look like a
   // change of their own).
   const bool window_ready = pairsSinceAccepted() >= static_cast<std::size_t>(drift_.window_pairs);
-  if (since_test_ < drift_.period_pairs || (!window_ready && !settling_)) return std::nullopt;
+  if (since_test_ < drift_.period_pairs || (!window_ready && !settling_)) {
+    seconds_ += elapsed();
+    return std::nullopt;
+  }
   since_test_ = 0;
   if (!window_ready) {
     // Accepted early, no window of the new rig yet: go on refitting the final candidate.
     if (!(candidate_ && candidate_->complete)) fitCandidate(reference_);
-    seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() -
-                offset_seconds;
+    seconds_ += elapsed();
     return std::nullopt;
   }
 
@@ -140,9 +143,8 @@ std::optional<DriftRecord> DriftMonitor::addPair(CalibrationPair pair) {
     fitCandidate(reference_);
   }
 
-  record.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  seconds_ += record.seconds - offset_seconds;
+  record.seconds = elapsed();
+  seconds_ += record.seconds;
   last_record_ = record;
   return record;
 }
@@ -177,11 +179,10 @@ void DriftMonitor::fitCandidate(const Extrinsic& start) {
   const std::vector<CalibrationPair> pairs =
       pairsSince(*change_seq_, static_cast<std::size_t>(drift_.update_pairs));
   if (pairs.size() < std::max<std::size_t>(6, 2 * static_cast<std::size_t>(drift_.folds))) return;
-  const DriftUpdateFit update =
-      fitDriftUpdate(camera_, pairs, reference_, start, drift_, calibration_);
-  const LocalFit& fit = update.fit;
   const LossEvaluator nearest(
       camera_, pairs, LossConfig{calibration_.behind_camera_penalty_c1, PixelRule::kNearest});
+  const DriftUpdateFit update = fitDriftUpdate(nearest, reference_, start, drift_, calibration_);
+  const LocalFit& fit = update.fit;
   DriftCandidate c;
   c.model = update.model;
   c.full_p_value = update.full_p_value;

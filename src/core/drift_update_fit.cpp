@@ -22,17 +22,32 @@ const char* toString(DriftUpdateModel model) {
   return "full";
 }
 
+namespace {
+
+void checkUpdateInput(std::size_t pairs, const DriftConfig& drift, const CalibrationConfig& calibration) {
+  drift.validate();
+  calibration.validate();
+  if (pairs < 2 * static_cast<std::size_t>(drift.folds)) {
+    throw std::invalid_argument("drift update: " + std::to_string(pairs) + " pairs; it needs at least " +
+                                std::to_string(2 * drift.folds));
+  }
+}
+
+}  // namespace
+
 DriftUpdateFit fitDriftUpdate(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
                               const Extrinsic& reference, const Extrinsic& start,
                               const DriftConfig& drift, const CalibrationConfig& calibration) {
-  drift.validate();
-  calibration.validate();
-  if (pairs.size() < 2 * static_cast<std::size_t>(drift.folds)) {
-    throw std::invalid_argument("drift update: " + std::to_string(pairs.size()) +
-                                " pairs; it needs at least " + std::to_string(2 * drift.folds));
-  }
+  checkUpdateInput(pairs.size(), drift, calibration);  // before the distance maps are built
   const LossEvaluator nearest(
       camera, pairs, LossConfig{calibration.behind_camera_penalty_c1, PixelRule::kNearest});
+  return fitDriftUpdate(nearest, reference, start, drift, calibration);
+}
+
+DriftUpdateFit fitDriftUpdate(const LossEvaluator& nearest, const Extrinsic& reference,
+                              const Extrinsic& start, const DriftConfig& drift,
+                              const CalibrationConfig& calibration) {
+  checkUpdateInput(nearest.pairCount(), drift, calibration);
   const LossEvaluator bilinear = nearest.withPixelRule(PixelRule::kBilinear);
   const RefineConfig refine = driftRefineConfig(drift, calibration);
   const int threads = calibration.num_threads;

@@ -20,6 +20,7 @@
 #include "thermal_lidar_calibration/core/drift_config.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
 #include "thermal_lidar_calibration/core/local_fit.hpp"
+#include "thermal_lidar_calibration/core/loss.hpp"
 
 #include <cstdint>
 #include <vector>
@@ -45,5 +46,10 @@ struct DriftUpdateFit {
 DriftUpdateFit fitDriftUpdate(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
                               const Extrinsic& reference, const Extrinsic& start,
                               const DriftConfig& drift, const CalibrationConfig& calibration);
+// The same on the pairs of `nearest` (an evaluator with PixelRule::kNearest the caller already
+// has: the distance maps are built once).
+DriftUpdateFit fitDriftUpdate(const LossEvaluator& nearest, const Extrinsic& reference,
+                              const Extrinsic& start, const DriftConfig& drift,
+                              const CalibrationConfig& calibration);
 
 }  // namespace thermal_lidar_calibration
