@@ -38,8 +38,7 @@ CalibrationWorker::~CalibrationWorker() {
   }
 }
 
-void CalibrationWorker::start(const CameraModel& camera, std::vector<CalibrationPair> pairs,
-                              const CalibrationConfig& config, std::optional<QualityRequest> quality) {
+void CalibrationWorker::start(CalibrationJobRequest request) {
   std::lock_guard<std::mutex> lock(state_->mutex);
   if (state_->running) throw std::logic_error("a calibration is already running");
   if (state_->thread.joinable()) state_->thread.join();  // finished: reap it
@@ -48,26 +47,16 @@ void CalibrationWorker::start(const CameraModel& camera, std::vector<Calibration
   state_->progress.reset();
   state_->outcome.reset();
   std::shared_ptr<State> state = state_;
-  state_->thread = std::thread([state, camera, pairs = std::move(pairs), config, quality]() {
+  state_->thread = std::thread([state, request = std::move(request)]() {
     Outcome outcome;
     try {
-      const ProgressCallback callback = [&state](const Progress& p) {
-        {
+      outcome = runCalibrationJob(request, [&state](const JobProgress& p) {
+        if (p.stage == JobProgress::Stage::kFit) {
           std::lock_guard<std::mutex> lock(state->mutex);
-          state->progress = p;
+          state->progress = p.fit;
         }
         return !state->stop.load();
-      };
-      outcome.result = calibrate(camera, pairs, config, callback);
-      if (quality && !outcome.result->stopped) {
-        try {
-          outcome.quality = assessQuality(camera, pairs, *outcome.result, quality->config,
-                                          config.behind_camera_penalty_c1, quality->reference,
-                                          [&state](int, int) { return !state->stop.load(); });
-        } catch (const std::exception& e) {
-          outcome.error = std::string("quality assessment failed: ") + e.what();  // result stands
-        }
-      }
+      });
     } catch (const std::exception& e) {
       outcome.error = e.what();
     } catch (...) {

@@ -3,8 +3,6 @@
 
 #include "thermal_lidar_calibration/node/calibration_node.hpp"
 
-#include "thermal_lidar_calibration/app/calibration_report.hpp"
-#include "thermal_lidar_calibration/app/result_file.hpp"
 #include "thermal_lidar_calibration/app/static_transform_command.hpp"
 
 namespace thermal_lidar_calibration {
@@ -12,6 +10,21 @@ namespace ros_io {
 
 std::size_t CalibrationNode::nextFitPairs() const {
   return std::max<std::size_t>(next_fit_pairs_, static_cast<std::size_t>(params_.core.pairs_required));
+}
+
+// The calibration in use, to compare with: ~reference_file, else what the tf tree holds between
+// the two frames (not this node's own earlier result: only while it has not published under the
+// camera frame itself).
+std::optional<JobReference> CalibrationNode::runReference() const {
+  if (reference_) return JobReference{*reference_, "file", params_.reference_file};
+  const std::string lidar = builder_->lidarFrame(), camera = builder_->cameraFrame();
+  if (lidar.empty() || camera.empty() || published_child_ == camera) return std::nullopt;
+  std::string ignored;
+  const std::optional<Extrinsic> in_tf = tf_publisher_->lookupExtrinsic(lidar, camera, &ignored);
+  if (!in_tf) return std::nullopt;
+  JobReference reference{*in_tf, "tf", "tf " + lidar + " -> " + camera};
+  ROS_INFO("comparing with the calibration in the tf tree (%s)", reference.origin.c_str());
+  return reference;
 }
 
 std::string CalibrationNode::startOptimization(const std::string& why) {
@@ -27,29 +40,19 @@ std::string CalibrationNode::startOptimization(const std::string& why) {
     return "refused: only " + std::to_string(n) + " pairs kept, at least " +
            std::to_string(params_.min_pairs_to_calibrate) + " needed (~min_pairs_to_calibrate)";
   }
-  result_stamps_s_.clear();
-  for (const auto& pair : builder_->pairs()) result_stamps_s_.push_back(pair.stamp_s);
   discard_outcome_ = false;
-  // The calibration in use, to compare with: ~reference_file, else what the tf tree holds between
-  // the two frames (not this node's own earlier result: only while it has not published under
-  // the camera frame itself).
-  std::optional<Extrinsic> reference = reference_;
-  reference_source_ = reference ? "file" : "";
-  reference_origin_ = reference ? params_.reference_file : "";
-  const std::string lidar = builder_->lidarFrame(), camera = builder_->cameraFrame();
-  if (!reference && !lidar.empty() && !camera.empty() && published_child_ != camera) {
-    std::string ignored;
-    reference = tf_publisher_->lookupExtrinsic(lidar, camera, &ignored);
-    if (reference) {
-      reference_source_ = "tf";
-      reference_origin_ = "tf " + lidar + " -> " + camera;
-      ROS_INFO("comparing with the calibration in the tf tree (%s)", reference_origin_.c_str());
-    }
-  }
-  CalibrationWorker::QualityRequest quality{params_.core.quality, reference};
-  quality.config.uncertainty.seed = params_.core.calibration.seed;
-  quality.config.uncertainty.num_threads = params_.core.calibration.num_threads;
-  worker_.start(builder_->camera(), builder_->pairs(), params_.core.calibration, quality);
+  CalibrationJobRequest job;
+  job.camera = builder_->camera();
+  job.pairs = builder_->pairs();
+  job.parameters = params_.core;
+  job.reference = runReference();
+  job.lidar_frame = lidar_frame_;
+  job.camera_frame = camera_frame_;
+  job.source = "live";
+  job.report_title = "calibration_node " + ros::this_node::getName();
+  job.output_file = params_.output_file;
+  job.report_dir = params_.report_dir;
+  worker_.start(std::move(job));
   logProgress(true);
   setState(CalibrationStatus::OPTIMIZING, "optimizing " + std::to_string(n) + " pairs (" + why + ")");
   ROS_INFO("optimizing %zu pairs on a worker thread (%s)", n, why.c_str());
@@ -72,22 +75,30 @@ void CalibrationNode::handleOutcome(CalibrationWorker::Outcome outcome) {
   }
   result_ = std::move(outcome.result);
   quality_ = std::move(outcome.quality);
-  if (quality_ && quality_->reference) {
-    quality_->reference->source = reference_source_;
-    quality_->reference->origin = reference_origin_;
-  }
-  if (!outcome.error.empty()) ROS_WARN("%s", outcome.error.c_str());
+  result_context_ = std::move(outcome.context);
+  if (!outcome.quality_error.empty()) ROS_WARN("%s", outcome.quality_error.c_str());
   if (quality_) {
     ROS_INFO("verdict %s: %s", toString(quality_->verdict.verdict),
              quality_->verdict.reasons.empty() ? "" : quality_->verdict.reasons.front().c_str());
   }
-  const std::string write_error = writeResult();
-  writeReport();
+  const std::string& write_error = outcome.result_file_error;
+  if (outcome.result_file_written) {
+    ROS_INFO("result written to %s", params_.output_file.c_str());
+  } else {
+    ROS_ERROR("result file not written: %s", write_error.c_str());
+  }
+  if (!params_.report_dir.empty()) {
+    if (outcome.report_error.empty()) {
+      ROS_INFO("report written: %s/index.html", params_.report_dir.c_str());
+    } else {
+      ROS_ERROR("report not written: %s", outcome.report_error.c_str());
+    }
+  }
   overlay_->setEstimate(result_->extrinsic);
   result_published_ = false;
   if (tfCheckWaitOver()) publishResult();
   // The pairs this fit used (collecting went on while it ran with ~stop_when: quality).
-  const std::size_t n = result_stamps_s_.size();
+  const std::size_t n = outcome.pairs;
   if (params_.stop_when == StopWhen::kQuality && quality_ &&
       quality_->verdict.verdict != Verdict::kGood && n < static_cast<std::size_t>(params_.max_pairs)) {
     // Not good yet: the result is out (a better one replaces it), and collecting goes on.
@@ -171,48 +182,14 @@ void CalibrationNode::publishResult() {
            staticTransformPublisherCommand(result_->extrinsic, lidar_frame_, published_child_).c_str());
 }
 
-void CalibrationNode::writeReport() {
-  if (params_.report_dir.empty()) return;
-  // The pairs of the run: the first ones kept (with ~stop_when: quality more may have been kept
-  // while it ran). The copy shares the images.
-  const std::vector<CalibrationPair> fitted(builder_->pairs().begin(),
-                                            builder_->pairs().begin() +
-                                                static_cast<std::ptrdiff_t>(std::min(result_stamps_s_.size(),
-                                                                                     builder_->pairs().size())));
-  ReportInput report;
-  report.camera = &builder_->camera();
-  report.pairs = &fitted;
-  report.result = &*result_;
-  report.quality = quality_ ? &*quality_ : nullptr;
-  report.threshold_px = params_.core.calibration.outlier.threshold_px;
-  report.source = "calibration_node " + ros::this_node::getName();
-  report.lidar_frame = lidar_frame_;
-  report.camera_frame = camera_frame_;
-  try {
-    writeCalibrationReport(params_.report_dir, report);
-    ROS_INFO("report written: %s/index.html", params_.report_dir.c_str());
-  } catch (const std::exception& e) {
-    ROS_ERROR("report not written: %s", e.what());
-  }
-}
-
 std::string CalibrationNode::writeResult() {
-  ResultContext context;
-  context.lidar_frame = lidar_frame_;
-  context.camera_frame = camera_frame_;
-  context.source = "live";
-  context.pair_stamps_s = result_stamps_s_;
-  context.parameters = params_.core;
-  context.quality = quality_;
-  try {
-    writeResultFile(params_.output_file, *result_, context);
-    checkExtrinsicFile(params_.output_file, result_->extrinsic);
-  } catch (const std::exception& e) {
-    ROS_ERROR("result file not written: %s", e.what());
-    return e.what();
+  const std::string error = saveResultFile(params_.output_file, *result_, result_context_);
+  if (error.empty()) {
+    ROS_INFO("result written to %s", params_.output_file.c_str());
+  } else {
+    ROS_ERROR("result file not written: %s", error.c_str());
   }
-  ROS_INFO("result written to %s", params_.output_file.c_str());
-  return "";
+  return error;
 }
 
 }  // namespace ros_io

@@ -1,13 +1,13 @@
-// calibrate_bag: parameters -> bag -> shared ingest path -> calibrate() -> result file + summary.
+// calibrate_bag: parameters -> bag -> shared ingest path -> the calibration job (fit, quality,
+// result file, report; the node runs the same job) -> summary.
 
 #include "thermal_lidar_calibration/tools/calibrate_bag.hpp"
 #include "thermal_lidar_calibration/ros/dataset_bag.hpp"
 
-#include "thermal_lidar_calibration/core/loss.hpp"
 #include "thermal_lidar_calibration/ros/bag_ingest.hpp"
 #include "thermal_lidar_calibration/app/writable_path.hpp"
+#include "thermal_lidar_calibration/app/calibration_job.hpp"
 #include "thermal_lidar_calibration/app/calibration_summary.hpp"
-#include "thermal_lidar_calibration/app/calibration_report.hpp"
 #include "thermal_lidar_calibration/app/drift_timeline.hpp"
 #include "thermal_lidar_calibration/app/camera_info_file.hpp"
 #include "thermal_lidar_calibration/app/progress_line.hpp"
@@ -115,14 +115,6 @@ std::string noPairsMessage(const BagIngestStats& stats, const RejectionCounts& c
   return msg;
 }
 
-std::vector<std::size_t> inlierIndices(const CalibrationResult& result) {
-  std::vector<std::size_t> used;
-  for (std::size_t i = 0; i < result.inliers.size(); ++i) {
-    if (result.inliers[i]) used.push_back(i);
-  }
-  return used;
-}
-
 // "OUT.drift.csv" beside "OUT.yaml".
 std::string besideOutput(const std::string& output, const std::string& suffix) {
   const std::size_t dot = output.rfind('.');
@@ -183,39 +175,41 @@ int runDriftWatch(const CalibrateBagOptions& options, const CoreParameters& para
   return 0;
 }
 
-}  // namespace
-
-int runCalibrateBag(const CalibrateBagOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  g_interrupted = false;
-  std::signal(SIGINT, onSigint);
-
-  CoreParameters params = loadParameters(options);
-  // Checked before the bag is read: a run must not end in "cannot write" after minutes of work.
+// Checked before the bag is read: a run must not end in "cannot write" after minutes of work.
+void checkOutputsWritable(const CalibrateBagOptions& options) {
   const std::string output_problem = whyNotWritable(options.output);
   if (!output_problem.empty()) throw std::invalid_argument("--output: " + output_problem);
-  if (!options.report.empty()) {
-    std::error_code made;
-    std::filesystem::create_directories(options.report, made);
-    const std::string report_problem =
-        made ? made.message() : whyNotWritable(options.report + "/index.html");
-    if (!report_problem.empty()) {
-      throw std::invalid_argument("--report " + options.report + ": " + report_problem);
-    }
-  }
-  std::optional<Extrinsic> truth;
-  if (!options.truth.empty()) truth = readExtrinsicFile(options.truth);
-  std::optional<Extrinsic> reference;
-  if (!options.reference.empty()) {
-    try {
-      reference = readExtrinsicFile(options.reference);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(std::string("--reference: ") + e.what());
-    }
-  }
+  if (options.report.empty()) return;
+  std::error_code made;
+  std::filesystem::create_directories(options.report, made);
+  const std::string report_problem = made ? made.message() : whyNotWritable(options.report + "/index.html");
+  if (!report_problem.empty()) throw std::invalid_argument("--report " + options.report + ": " + report_problem);
+}
 
-  BagTopics topics{options.image_topic, options.mask_topic, options.clusters_topic,
-                   options.camera_info_topic, options.points_topic, options.detect};
+// The file's extrinsic, read before the bag (a typo must not cost the minutes of reading it);
+// nullopt without a file. `flag` prefixes the error when not empty.
+std::optional<Extrinsic> readOptionalExtrinsic(const std::string& path, const std::string& flag) {
+  if (path.empty()) return std::nullopt;
+  try {
+    return readExtrinsicFile(path);
+  } catch (const std::invalid_argument& e) {
+    if (flag.empty()) throw;
+    throw std::invalid_argument(flag + ": " + e.what());
+  }
+}
+
+// What the bag gave: its camera, the kept pairs (in the builder) and how reading went.
+struct BagPairs {
+  CameraModel camera;
+  std::unique_ptr<DatasetBuilder> builder;
+  BagIngestStats stats;
+};
+
+// The bag through the shared ingest path (the node's FrameSynchronizer -> DatasetBuilder).
+// Throws std::invalid_argument when it yields no pairs, saying why.
+BagPairs readPairs(const CalibrateBagOptions& options, CoreParameters& params, ProgressLine& progress) {
+  const BagTopics topics{options.image_topic, options.mask_topic, options.clusters_topic,
+                         options.camera_info_topic, options.points_topic, options.detect};
   std::unique_ptr<PersonDetectionAdapter> detectors;
   if (options.detect) detectors = std::make_unique<PersonDetectionAdapter>(loadDetection(options));
   rosbag::Bag bag;
@@ -234,21 +228,20 @@ int runCalibrateBag(const CalibrateBagOptions& options) {
       }
     }
   }
-  const CameraModel camera = options.camera_info_file.empty()
-                                 ? cameraModelFromBag(bag, topics.camera_info, bag_topics)
-                                 : loadCameraInfoFile(options.camera_info_file);
+  BagPairs read;
+  read.camera = options.camera_info_file.empty() ? cameraModelFromBag(bag, topics.camera_info, bag_topics)
+                                                 : loadCameraInfoFile(options.camera_info_file);
   if (!options.quiet) {
-    std::fprintf(stderr, "calibrate_bag: camera %s; %s\n", camera.describe().c_str(),
+    std::fprintf(stderr, "calibrate_bag: camera %s; %s\n", read.camera.describe().c_str(),
                  algorithmText(params.calibration).c_str());
   }
-
   if (detectors) {
-    const std::string window = lidarWindowWarning(detectors->parameters().lidar.person, camera);
+    const std::string window = lidarWindowWarning(detectors->parameters().lidar.person, read.camera);
     if (!window.empty()) warn(window);
   }
 
-  ProgressLine progress(stderr, !options.quiet);
-  DatasetBuilder builder(camera, params.gate);
+  read.builder = std::make_unique<DatasetBuilder>(read.camera, params.gate);
+  DatasetBuilder& builder = *read.builder;
   IngestCallbacks callbacks;
   callbacks.warn = warn;
   callbacks.progress = [&](const BagIngestStats& s, const DatasetBuilder& b) {
@@ -257,7 +250,8 @@ int runCalibrateBag(const CalibrateBagOptions& options) {
                     " frames, " + std::to_string(b.pairs().size()) + " pairs kept");
     return !g_interrupted;
   };
-  const BagIngestStats stats = ingestBag(bag, topics, params, builder, callbacks, detectors.get());
+  read.stats = ingestBag(bag, topics, params, builder, callbacks, detectors.get());
+  const BagIngestStats& stats = read.stats;
   bag.close();
   progress.update("read: " + std::to_string(stats.messages_read) + " messages, " +
                       std::to_string(stats.frames) + " frames, " +
@@ -272,107 +266,101 @@ int runCalibrateBag(const CalibrateBagOptions& options) {
   if (builder.pairs().empty()) {
     throw std::invalid_argument(noPairsMessage(stats, builder.counts(), params, topics));
   }
+  return read;
+}
 
-  if (options.monitor) {
-    return runDriftWatch(options, params, camera, builder, *reference, progress);
-  }
-
-  const std::size_t frames = stats.frames;
-  const ProgressCallback on_progress = [&](const Progress& p) {
+// The calibration job on the bag's pairs (the node runs the same job), with its progress on
+// stderr. Throws when the fit failed or a file asked for could not be written.
+CalibrationJobOutcome calibratePairs(const CalibrateBagOptions& options, const CoreParameters& params,
+                                     BagPairs& read, const std::optional<Extrinsic>& truth,
+                                     const std::optional<Extrinsic>& reference, ProgressLine& progress) {
+  CalibrationJobRequest job;
+  job.camera = read.camera;
+  job.pairs = read.builder->takePairs();
+  job.parameters = params;
+  if (reference) job.reference = JobReference{*reference, "file", options.reference};
+  if (truth) job.truth = JobTruth{*truth, options.truth};
+  job.lidar_frame = read.builder->lidarFrame();
+  job.camera_frame = read.builder->cameraFrame();
+  job.source = options.bag;
+  job.report_title = "calibrate_bag " + options.bag;
+  job.output_file = options.output;
+  job.report_dir = options.report;
+  job.write_stopped_result = true;  // Ctrl-C keeps the best result so far
+  const std::size_t pairs = job.pairs.size();
+  const std::size_t frames = read.stats.frames;
+  const int resamples = params.quality.uncertainty.resamples;
+  JobProgress::Stage stage = JobProgress::Stage::kFit;
+  CalibrationJobOutcome outcome = runCalibrationJob(job, [&](const JobProgress& p) {
+    if (p.stage != stage) progress.finish();  // each stage on a line of its own
+    stage = p.stage;
     char buf[256];
-    std::snprintf(buf, sizeof(buf),
-                  "optimizing: %zu pairs kept of %zu frames | %s generation %d/%d | best loss %.4f px",
-                  builder.pairs().size(), frames, p.stage.c_str(), p.generation,
-                  p.generations_total, p.best_loss);
-    progress.update(buf);
+    if (p.stage == JobProgress::Stage::kFit) {
+      std::snprintf(buf, sizeof(buf),
+                    "optimizing: %zu pairs kept of %zu frames | %s generation %d/%d | best loss %.4f px",
+                    pairs, frames, p.fit.stage.c_str(), p.fit.generation, p.fit.generations_total,
+                    p.fit.best_loss);
+      progress.update(buf);
+    } else if (p.stage == JobProgress::Stage::kUncertainty) {
+      std::snprintf(buf, sizeof(buf), "uncertainty: bootstrap resample %d/%d", p.resample, resamples);
+      progress.update(buf);
+    }
     return !g_interrupted;
-  };
-  CalibrationResult result;
-  try {
-    result = calibrate(camera, builder.pairs(), params.calibration, on_progress);
-  } catch (const std::invalid_argument& e) {
-    progress.finish();
-    throw std::invalid_argument(std::string("cannot calibrate on ") +
-                                std::to_string(builder.pairs().size()) + " pairs: " + e.what());
-  }
+  });
   progress.finish();
-
-  // How far to trust it: bootstrap intervals, coverage, verdict, and the reference's standing.
-  std::optional<QualityAssessment> quality;
-  if (!result.stopped) {
-    QualityConfig quality_config = params.quality;
-    quality_config.uncertainty.seed = params.calibration.seed;
-    quality_config.uncertainty.num_threads = params.calibration.num_threads;
-    const int total = quality_config.uncertainty.resamples;
-    quality = assessQuality(camera, builder.pairs(), result, quality_config,
-                            params.calibration.behind_camera_penalty_c1, reference,
-                            [&](int done, int) {
-                              progress.update("uncertainty: bootstrap resample " + std::to_string(done) +
-                                              "/" + std::to_string(total));
-                              return !g_interrupted;
-                            });
-    progress.finish();
-    if (quality->reference) {
-      quality->reference->source = "file";
-      quality->reference->origin = options.reference;
+  if (!outcome.result) {
+    throw std::invalid_argument("cannot calibrate on " + std::to_string(pairs) + " pairs: " + outcome.error);
+  }
+  if (!outcome.quality_error.empty()) warn(outcome.quality_error);
+  if (!outcome.result_file_written) throw std::runtime_error(outcome.result_file_error);
+  if (!options.report.empty()) {
+    if (!outcome.report_error.empty()) throw std::runtime_error(outcome.report_error);
+    if (!options.quiet) {
+      std::printf("report: %s/index.html (%zu files)\n", options.report.c_str(), outcome.report_files.size());
     }
   }
+  return outcome;
+}
 
-  ResultContext context;
-  context.quality = quality;
-  context.lidar_frame = builder.lidarFrame().empty() ? "lidar" : builder.lidarFrame();
-  context.camera_frame = builder.cameraFrame().empty() ? "camera" : builder.cameraFrame();
-  context.source = options.bag;
-  for (const auto& pair : builder.pairs()) context.pair_stamps_s.push_back(pair.stamp_s);
-  context.parameters = params;
-  if (truth) {
-    TruthComparison cmp;
-    cmp.truth_file = options.truth;
-    cmp.rotation_error_rad = rotationErrorRad(result.extrinsic, *truth);
-    cmp.translation_error_m = translationErrorM(result.extrinsic, *truth);
-    LossConfig loss_config;
-    loss_config.behind_camera_penalty_c1 = params.calibration.behind_camera_penalty_c1;
-    loss_config.pixel_rule = PixelRule::kNearest;
-    const LossEvaluator evaluator(camera, builder.pairs(), loss_config);
-    cmp.truth_loss = evaluator.loss(*truth, inlierIndices(result));
-    context.truth = cmp;
+}  // namespace
+
+int runCalibrateBag(const CalibrateBagOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  g_interrupted = false;
+  std::signal(SIGINT, onSigint);
+
+  CoreParameters params = loadParameters(options);
+  checkOutputsWritable(options);
+  const std::optional<Extrinsic> truth = readOptionalExtrinsic(options.truth, "");
+  const std::optional<Extrinsic> reference = readOptionalExtrinsic(options.reference, "--reference");
+
+  ProgressLine progress(stderr, !options.quiet);
+  BagPairs read = readPairs(options, params, progress);
+  if (options.monitor) {
+    return runDriftWatch(options, params, read.camera, *read.builder, *reference, progress);
   }
-  writeResultFile(options.output, result, context);
-  if (!options.report.empty()) {
-    ReportInput report;
-    report.camera = &camera;
-    report.pairs = &builder.pairs();
-    report.result = &result;
-    report.quality = quality ? &*quality : nullptr;
-    report.threshold_px = params.calibration.outlier.threshold_px;
-    report.source = "calibrate_bag " + options.bag;
-    report.lidar_frame = context.lidar_frame;
-    report.camera_frame = context.camera_frame;
-    const std::vector<std::string> files = writeCalibrationReport(options.report, report);
-    if (!options.quiet) std::printf("report: %s/index.html (%zu files)\n", options.report.c_str(), files.size());
-  }
+  const CalibrationJobOutcome outcome = calibratePairs(options, params, read, truth, reference, progress);
+  const CalibrationResult& result = *outcome.result;
 
   SummaryInput summary;
   summary.bag_path = options.bag;
   summary.output_path = options.output;
-  summary.lidar_frame = context.lidar_frame;
-  summary.camera_frame = context.camera_frame;
+  summary.lidar_frame = outcome.context.lidar_frame;
+  summary.camera_frame = outcome.context.camera_frame;
   summary.algorithm_text = algorithmText(params.calibration);
-  summary.messages_read = stats.messages_read;
-  summary.frames = stats.frames;
-  summary.counts = builder.counts();
+  summary.messages_read = read.stats.messages_read;
+  summary.frames = read.stats.frames;
+  summary.counts = read.builder->counts();
   summary.result = result;
-  summary.truth = context.truth;
-  summary.quality = quality;
-  summary.total_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.truth = outcome.context.truth;
+  summary.quality = outcome.quality;
+  summary.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!options.quiet || result.stopped) {
     std::fputs(formatCalibrationSummary(summary).c_str(), stdout);
     std::fflush(stdout);
   }
   if (result.stopped) {
-    throw std::runtime_error("interrupted; the best result so far was written to " +
-                             options.output);
+    throw std::runtime_error("interrupted; the best result so far was written to " + options.output);
   }
   return 0;
 }

@@ -1,10 +1,10 @@
 #pragma once
-// Runs calibrate() on a background thread so the node's callbacks stay responsive. The thread
-// catches its own exceptions (reported in the outcome); requestStop() is checked in the
-// progress callback, so a run stops within one generation. ROS-free apart from its location.
+// Runs the calibration job (calibration_job.hpp) on a background thread so the node's
+// callbacks stay responsive. The thread catches its own exceptions (reported in the outcome);
+// requestStop() is checked in the job's progress callback, so a run stops within one generation
+// or bootstrap resample. ROS-free.
 
-#include "thermal_lidar_calibration/core/calibrator.hpp"
-#include "thermal_lidar_calibration/core/quality_assessment.hpp"
+#include "thermal_lidar_calibration/app/calibration_job.hpp"
 
 #include <memory>
 #include <optional>
@@ -15,11 +15,7 @@ namespace thermal_lidar_calibration {
 
 class CalibrationWorker {
  public:
-  struct Outcome {
-    std::optional<CalibrationResult> result;  // set on success (result->stopped if stopped)
-    std::optional<QualityAssessment> quality;  // with a quality request, after a finished fit
-    std::string error;                        // set on failure
-  };
+  using Outcome = CalibrationJobOutcome;
 
   CalibrationWorker();
   // Asks a running calibration to stop and waits for it up to `kStopWait`; a thread still
@@ -28,19 +24,12 @@ class CalibrationWorker {
   CalibrationWorker(const CalibrationWorker&) = delete;
   CalibrationWorker& operator=(const CalibrationWorker&) = delete;
 
-  // Starts a run on copies of the inputs. Throws std::logic_error if a run is still going.
-  // With `quality`, the fit is followed on the same thread by assessQuality() (bootstrap
-  // intervals, coverage, verdict, the reference's standing); a failure there leaves the result.
-  struct QualityRequest {
-    QualityConfig config;
-    std::optional<Extrinsic> reference;
-  };
-  void start(const CameraModel& camera, std::vector<CalibrationPair> pairs,
-             const CalibrationConfig& config,
-             std::optional<QualityRequest> quality = std::nullopt);
+  // Starts the job (the fit, its quality, the result file and report it asks for). Throws
+  // std::logic_error if a run is still going.
+  void start(CalibrationJobRequest request);
   void requestStop();
   bool busy() const;  // a run is going (or stopping)
-  std::optional<Progress> progress() const;  // latest progress of the current or last run
+  std::optional<Progress> progress() const;  // latest fit progress of the current or last run
   // The outcome of a finished run, once; nullopt while running or when already taken.
   std::optional<Outcome> takeOutcome();
 

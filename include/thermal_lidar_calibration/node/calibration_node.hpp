@@ -88,14 +88,14 @@ class CalibrationNode {
 
   // calibration_node_result.cpp
   std::string startOptimization(const std::string& why);  // "" when started, else the refusal
+  std::optional<JobReference> runReference() const;  // the calibration in use, if known
   // Pairs at which the next fit starts by itself: ~pairs_required, then with ~stop_when quality
   // quality_check_every_pairs more after each fit whose verdict was not good.
   std::size_t nextFitPairs() const;
   void handleOutcome(CalibrationWorker::Outcome outcome);
   void publishResult();
-  // Writes ~output_file and reads it back; "" when the file holds the result, else why not.
+  // ~save: writes ~output_file again and reads it back; "" when the file holds the result.
   std::string writeResult();
-  void writeReport();  // ~report_dir, after a calibration (a failure is logged, not fatal)
   // The tf check's wait is over: ~tf_check_wait_s of wall time since start AND of the data's
   // own time (ros::Time, sim time on a replay) since the first input message, so a resumed node
   // does not publish before a replayed bag's /tf_static has had its chance.
@@ -171,9 +171,8 @@ class CalibrationNode {
   std::string state_message_;
   std::optional<CalibrationResult> result_;
   std::optional<QualityAssessment> quality_;  // of result_: intervals, coverage, verdict, reference
+  ResultContext result_context_;              // what the result file holds besides result_
   std::optional<Extrinsic> reference_;        // ~reference_file
-  std::string reference_source_, reference_origin_;  // of the run's reference: "file" / "tf"
-  std::vector<double> result_stamps_s_;
   std::string camera_frame_, lidar_frame_;
   std::string published_child_;
   bool result_published_ = true;  // false while a result waits for the tf check window

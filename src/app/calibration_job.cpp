@@ -1,0 +1,136 @@
+// The calibration job both front ends run: fit -> quality -> truth -> result file -> report.
+
+#include "thermal_lidar_calibration/app/calibration_job.hpp"
+
+#include "thermal_lidar_calibration/app/calibration_report.hpp"
+#include "thermal_lidar_calibration/core/loss.hpp"
+#include "thermal_lidar_calibration/core/pose_difference.hpp"
+
+#include <exception>
+#include <utility>
+
+namespace thermal_lidar_calibration {
+namespace {
+
+// How far to trust the fit: bootstrap intervals, coverage, verdict, the reference's standing.
+// The bootstrap draws from the calibration's seed and uses its threads, so one seed gives one
+// answer in both front ends.
+void assess(const CalibrationJobRequest& request, const JobCallback& callback,
+            CalibrationJobOutcome& out) {
+  const CalibrationConfig& calibration = request.parameters.calibration;
+  QualityConfig config = request.parameters.quality;
+  config.uncertainty.seed = calibration.seed;
+  config.uncertainty.num_threads = calibration.num_threads;
+  std::optional<Extrinsic> reference;
+  if (request.reference) reference = request.reference->extrinsic;
+  try {
+    out.quality = assessQuality(request.camera, request.pairs, *out.result, config,
+                                calibration.behind_camera_penalty_c1, reference,
+                                [&](int done, int total) {
+                                  if (!callback) return true;
+                                  JobProgress p;
+                                  p.stage = JobProgress::Stage::kUncertainty;
+                                  p.resample = done;
+                                  p.resamples = total;
+                                  return callback(p);
+                                });
+  } catch (const std::exception& e) {
+    out.quality_error = std::string("quality assessment failed: ") + e.what();
+    return;
+  }
+  if (out.quality->reference && request.reference) {
+    out.quality->reference->source = request.reference->source;
+    out.quality->reference->origin = request.reference->origin;
+  }
+}
+
+// The result against the known truth, and the truth's own loss on the pairs the result used.
+TruthComparison compareWithTruth(const CalibrationJobRequest& request, const CalibrationResult& result) {
+  TruthComparison cmp;
+  cmp.truth_file = request.truth->file;
+  cmp.rotation_error_rad = rotationErrorRad(result.extrinsic, request.truth->extrinsic);
+  cmp.translation_error_m = translationErrorM(result.extrinsic, request.truth->extrinsic);
+  LossConfig loss_config;
+  loss_config.behind_camera_penalty_c1 = request.parameters.calibration.behind_camera_penalty_c1;
+  loss_config.pixel_rule = PixelRule::kNearest;
+  const LossEvaluator evaluator(request.camera, request.pairs, loss_config);
+  cmp.truth_loss = evaluator.loss(request.truth->extrinsic, usedPairs(result));
+  return cmp;
+}
+
+void writeReport(const CalibrationJobRequest& request, CalibrationJobOutcome& out) {
+  ReportInput report;
+  report.camera = &request.camera;
+  report.pairs = &request.pairs;
+  report.result = &*out.result;
+  report.quality = out.quality ? &*out.quality : nullptr;
+  report.threshold_px = request.parameters.calibration.outlier.threshold_px;
+  report.source = request.report_title;
+  report.lidar_frame = out.context.lidar_frame;
+  report.camera_frame = out.context.camera_frame;
+  try {
+    out.report_files = writeCalibrationReport(request.report_dir, report);
+  } catch (const std::exception& e) {
+    out.report_error = e.what();
+  }
+}
+
+}  // namespace
+
+std::string saveResultFile(const std::string& path, const CalibrationResult& result,
+                           const ResultContext& context) {
+  try {
+    writeResultFile(path, result, context);
+    checkExtrinsicFile(path, result.extrinsic);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+CalibrationJobOutcome runCalibrationJob(const CalibrationJobRequest& request,
+                                        const JobCallback& callback) {
+  CalibrationJobOutcome out;
+  out.pairs = request.pairs.size();
+  try {
+    out.result = calibrate(request.camera, request.pairs, request.parameters.calibration,
+                           [&](const Progress& p) {
+                             if (!callback) return true;
+                             JobProgress job;
+                             job.fit = p;
+                             return callback(job);
+                           });
+  } catch (const std::exception& e) {
+    out.error = e.what();
+    return out;
+  }
+  const CalibrationResult& result = *out.result;
+  if (!result.stopped) assess(request, callback, out);
+
+  ResultContext& context = out.context;
+  context.lidar_frame = request.lidar_frame.empty() ? "lidar" : request.lidar_frame;
+  context.camera_frame = request.camera_frame.empty() ? "camera" : request.camera_frame;
+  context.source = request.source;
+  context.parameters = request.parameters;
+  context.quality = out.quality;
+  context.pair_stamps_s.reserve(request.pairs.size());
+  for (const CalibrationPair& pair : request.pairs) context.pair_stamps_s.push_back(pair.stamp_s);
+  if (request.truth) context.truth = compareWithTruth(request, result);
+
+  if (result.stopped && !request.write_stopped_result) return out;
+  // The last chance to stop before anything reaches the disk (the node's ~reset during the
+  // bootstrap); a front end that keeps stopped work writes it anyway.
+  if (callback && !request.write_stopped_result) {
+    JobProgress writing;
+    writing.stage = JobProgress::Stage::kWriting;
+    if (!callback(writing)) return out;
+  }
+  if (!request.output_file.empty()) {
+    out.result_file_error = saveResultFile(request.output_file, result, context);
+    out.result_file_written = out.result_file_error.empty();
+  }
+  if (!request.report_dir.empty()) writeReport(request, out);
+  return out;
+}
+
+}  // namespace thermal_lidar_calibration
