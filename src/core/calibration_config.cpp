@@ -2,6 +2,7 @@
 
 #include "parameter_range.hpp"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -47,6 +48,28 @@ void RefineConfig::validate() const {
   requireRange("refine_max_evaluations", max_evaluations, 1, 100000000);
 }
 
+const char* toString(TimeOffsetMode mode) {
+  switch (mode) {
+    case TimeOffsetMode::kEstimate: return "estimate";
+    case TimeOffsetMode::kFixed: return "fixed";
+    case TimeOffsetMode::kNone: return "none";
+  }
+  return "none";
+}
+
+void TimeOffsetConfig::validate() const {
+  requireRange("time_offset_max_s", max_s, 0.0, 2.0, true);
+  requireRange("time_offset_s", offset_s, -2.0, 2.0);
+  if (mode == TimeOffsetMode::kEstimate && std::abs(offset_s) > max_s) {
+    throw std::invalid_argument("parameter 'time_offset_s' = " + std::to_string(offset_s) +
+                                ": the search starts there, so it must lie within +-time_offset_max_s (" +
+                                std::to_string(max_s) + ")");
+  }
+  requireRange("time_offset_coarse_step_s", coarse_step_s, 0.0, max_s, true);
+  requireRange("time_offset_initial_step_s", initial_step_s, 0.0, 1.0, true);
+  requireRange("time_offset_min_step_s", min_step_s, 0.0, initial_step_s, true);
+}
+
 void CalibrationConfig::validate() const {
   if (algorithm != Algorithm::kPlain && algorithm != Algorithm::kOutlierRejection) {
     throw std::invalid_argument("parameter 'algorithm': must be 1 or 2");
@@ -54,6 +77,7 @@ void CalibrationConfig::validate() const {
   evolution.validate();
   outlier.validate();
   refine.validate();
+  time_offset.validate();
   LossConfig{behind_camera_penalty_c1, PixelRule::kNearest}.validate();
   requireRange("num_threads", num_threads, 0, 1024);
 }

@@ -4,6 +4,9 @@
 #include "thermal_lidar_calibration/core/inlier_selection.hpp"
 #include "thermal_lidar_calibration/core/local_refinement.hpp"
 #include "thermal_lidar_calibration/core/outlier_rejection.hpp"
+#include "thermal_lidar_calibration/core/person_timing.hpp"
+#include "thermal_lidar_calibration/core/time_offset_search.hpp"
+#include "thermal_lidar_calibration/core/timed_refinement.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -12,6 +15,181 @@
 #include <stdexcept>
 
 namespace thermal_lidar_calibration {
+namespace {
+
+// The time offset mode as it can be applied: the paper mode never moves points in time, and
+// pairs without measured motion have nothing to move.
+struct TimingPlan {
+  TimeOffsetMode mode = TimeOffsetMode::kNone;
+  double start_s = 0.0;
+  std::string note;
+  std::size_t pairs_with_motion = 0;
+};
+
+TimingPlan planTiming(const std::vector<CalibrationPair>& pairs, const CalibrationConfig& config) {
+  TimingPlan plan;
+  for (const CalibrationPair& p : pairs) plan.pairs_with_motion += hasMeasuredMotion(p) ? 1 : 0;
+  const TimeOffsetMode asked = config.time_offset.mode;
+  if (asked == TimeOffsetMode::kNone) return plan;
+  if (config.refine.mode == RefineMode::kNone) {
+    plan.note = std::string("time_offset_mode ") + toString(asked) +
+                " not applied: refine none is the paper's method, which ignores timing";
+    return plan;
+  }
+  if (plan.pairs_with_motion == 0) {
+    plan.note = std::string("time_offset_mode ") + toString(asked) +
+                " not applied: no pair has its people's motion measured (no neighbouring scans)";
+    return plan;
+  }
+  plan.mode = asked;
+  plan.start_s = config.time_offset.offset_s;
+  return plan;
+}
+
+// The evaluator at another time offset, or the same one when the offset is where it already is.
+LossEvaluator at(const LossEvaluator& loss, double time_offset_s) {
+  return loss.config().time_offset_s ? loss.withTimeOffset(time_offset_s)
+                                     : loss.withPixelRule(loss.config().pixel_rule);
+}
+
+// Reports a step to the history and the callback. `stage` names the progress, `history_stage`
+// (when not empty) the history's entry.
+class Reporter {
+ public:
+  Reporter(CalibrationResult& result, const ProgressCallback& progress) : result_(result), progress_(progress) {}
+  std::uint64_t evaluations_before_stage = 0;
+  bool operator()(const std::string& stage, int generation, int total, double best, const Extrinsic& e,
+                  std::uint64_t stage_evaluations, const std::string& history_stage = {}) {
+    result_.history.push_back({history_stage.empty() ? stage : history_stage, generation, best,
+                               evaluations_before_stage + stage_evaluations});
+    if (!progress_) return true;
+    Progress p;
+    p.stage = stage;
+    p.generation = generation;
+    p.generations_total = total;
+    p.best_loss = best;
+    p.evaluations = evaluations_before_stage + stage_evaluations;
+    p.best = e;
+    return progress_(p);
+  }
+
+ private:
+  CalibrationResult& result_;
+  const ProgressCallback& progress_;
+};
+
+// Algorithm 1 or 2 (the paper): sets the result's extrinsic, inliers and counts; returns the
+// pairs used.
+std::vector<std::size_t> evolve(const LossEvaluator& nearest, const CalibrationConfig& config, Rng& rng,
+                                Reporter& report, CalibrationResult& result) {
+  const std::size_t n = nearest.pairCount();
+  const int generations = config.evolution.max_iterations;
+  std::vector<std::size_t> used(n);
+  std::iota(used.begin(), used.end(), std::size_t{0});
+  EvolutionOutcome fit;
+  if (config.algorithm == Algorithm::kOutlierRejection) {
+    const OutlierRejection algorithm2(nearest, config.evolution, config.outlier, config.num_threads);
+    const OutlierOutcome outcome = algorithm2.run(
+        rng, [&](const std::string& stage, int g, double best, const Extrinsic& e, std::uint64_t evals) {
+          return report(stage, g, generations, best, e, evals);
+        });
+    fit = outcome.final_fit;
+    result.inliers = outcome.inliers;
+    result.outlier_fits_accepted = outcome.fits_accepted;
+    result.evaluations = outcome.evaluations;
+    result.stopped = outcome.stopped;
+    used.clear();
+    for (std::size_t i = 0; i < n; ++i) {
+      if (outcome.inliers[i]) used.push_back(i);
+    }
+  } else {
+    const EvolutionaryOptimizer algorithm1(nearest, config.evolution, config.num_threads);
+    fit = algorithm1.run(used, rng, [&](int g, double best, const Extrinsic& e, std::uint64_t evals) {
+      return report("plain_fit", g, generations, best, e, evals);
+    });
+    result.inliers.assign(n, true);
+    result.evaluations = fit.evaluations;
+    result.stopped = fit.stopped;
+  }
+  result.evolution_extrinsic = fit.best;
+  result.evolution_loss = nearest.loss(fit.best, used);
+  result.extrinsic = fit.best;
+  return used;
+}
+
+// Issue 21, mode estimate: the coarse search over the time offset from the evolution's pose.
+void searchOffset(const LossEvaluator& bilinear, const CalibrationConfig& config,
+                  const std::vector<std::size_t>& used, Reporter& report, CalibrationResult& result) {
+  report.evaluations_before_stage = result.evaluations;
+  const TimeOffsetProfile profile = searchTimeOffset(
+      bilinear, result.extrinsic, used, config.time_offset, config.refine, config.num_threads,
+      [&](int done, int total, double best) {
+        return report("time_offset_search", done, total, best, result.extrinsic, 0);
+      });
+  result.evaluations += profile.evaluations;
+  result.stopped = profile.stopped;
+  result.time_offset_profile_s = profile.offsets_s;
+  result.time_offset_profile_loss = profile.losses;
+  result.extrinsic = profile.poses[profile.best];
+  result.time_offset_s = profile.offsets_s[profile.best];
+}
+
+// Beyond the paper: the local refinement, alternating with the re-selection of the inliers.
+// Returns the pairs used.
+std::vector<std::size_t> refine(const LossEvaluator& nearest, const CalibrationConfig& config,
+                                std::vector<std::size_t> used, Reporter& report, CalibrationResult& result) {
+  const bool estimate = result.time_offset_mode == TimeOffsetMode::kEstimate;
+  const LossEvaluator bilinear = nearest.withPixelRule(PixelRule::kBilinear);
+  // Algorithm 2 can keep a mismatched pair (equal counts, different people) when neither of
+  // its subset fits is accepted; one such pair pulls the optimum by decimetres. So the
+  // refinement alternates: refine on the current inliers, then re-select the inliers among
+  // ALL collected pairs with the paper's own test (Eq. 1 <= threshold_sample), keeping at least
+  // the better half, until the set no longer changes. Pairs with people cut by the image
+  // border are left out of the re-selection (refine.exclude_truncated).
+  const std::vector<std::size_t> candidates = refinementCandidates(nearest, config.refine.exclude_truncated);
+  if (!config.refine.reselect_inliers) {
+    // One refinement on Algorithm 2's inliers, less the excluded pairs.
+    std::vector<std::size_t> kept;
+    std::set_intersection(used.begin(), used.end(), candidates.begin(), candidates.end(),
+                          std::back_inserter(kept));
+    if (!kept.empty()) used = kept;
+  }
+  if (estimate) searchOffset(bilinear, config, used, report, result);
+  constexpr int kMaxInlierRounds = 5;
+  for (int round = 1; round <= kMaxInlierRounds && !result.stopped; ++round) {
+    report.evaluations_before_stage = result.evaluations;
+    const std::string round_name = "refine " + std::to_string(round);
+    const LossEvaluator here = at(bilinear, result.time_offset_s);
+    result.history.push_back({round_name, 0, here.loss(result.extrinsic, used), report.evaluations_before_stage});
+    const auto on_iteration = [&](int iteration, double loss, const Extrinsic& e, std::uint64_t evals) {
+      return report("refine", iteration, 0, loss, e, evals, round_name);
+    };
+    if (estimate) {
+      const TimedRefineOutcome refined = TimedRefinement(here, config.refine, config.time_offset, config.num_threads)
+                                             .run(result.extrinsic, result.time_offset_s, used, on_iteration);
+      result.extrinsic = refined.best;
+      result.time_offset_s = refined.time_offset_s;
+      result.evaluations += refined.evaluations;
+      result.stopped = refined.stopped;
+    } else {
+      const RefineOutcome refined = LocalRefinement(here, config.refine, config.num_threads)
+                                        .run(result.extrinsic, used, on_iteration);
+      result.extrinsic = refined.best;
+      result.evaluations += refined.evaluations;
+      result.stopped = refined.stopped;
+    }
+    if (result.stopped || !config.refine.reselect_inliers) break;
+    const std::vector<std::size_t> reselected =
+        selectInliers(at(nearest, result.time_offset_s), result.extrinsic, config.outlier.threshold_px, candidates);
+    if (reselected == used) break;
+    used = reselected;
+  }
+  result.inliers.assign(nearest.pairCount(), false);
+  for (std::size_t i : used) result.inliers[i] = true;
+  return used;
+}
+
+}  // namespace
 
 CalibrationResult calibrate(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
                             const CalibrationConfig& config, const ProgressCallback& progress) {
@@ -20,120 +198,45 @@ CalibrationResult calibrate(const CameraModel& camera, const std::vector<Calibra
   if (pairs.empty()) {
     throw std::invalid_argument("calibration: no pairs were collected");
   }
-  const LossEvaluator nearest(camera, pairs,
-                              LossConfig{config.behind_camera_penalty_c1, PixelRule::kNearest});
-  Rng rng(config.seed);
   CalibrationResult result;
   result.pairs_collected = pairs.size();
+  const TimingPlan timing = planTiming(pairs, config);
+  result.time_offset_mode = timing.mode;
+  result.time_offset_s = timing.start_s;
+  result.time_offset_note = timing.note;
+  result.pairs_with_motion = timing.pairs_with_motion;
+  const std::optional<double> offset =
+      timing.mode == TimeOffsetMode::kNone ? std::nullopt : std::optional<double>(timing.start_s);
+  const LossEvaluator nearest(camera, pairs, LossConfig{config.behind_camera_penalty_c1, PixelRule::kNearest, offset});
+  Rng rng(config.seed);
+  Reporter report(result, progress);
 
-  std::uint64_t evaluations_before_stage = 0;
-  // history_stage: the stage's name in the history when it differs from the progress one.
-  auto report = [&](const std::string& stage, int generation, int total, double best,
-                    const Extrinsic& e, std::uint64_t stage_evaluations,
-                    const std::string& history_stage = {}) {
-    result.history.push_back({history_stage.empty() ? stage : history_stage, generation, best,
-                              evaluations_before_stage + stage_evaluations});
-    if (!progress) return true;
-    Progress p;
-    p.stage = stage;
-    p.generation = generation;
-    p.generations_total = total;
-    p.best_loss = best;
-    p.evaluations = evaluations_before_stage + stage_evaluations;
-    p.best = e;
-    return progress(p);
-  };
-  const int generations = config.evolution.max_iterations;
-
-  std::vector<std::size_t> used(pairs.size());
-  std::iota(used.begin(), used.end(), std::size_t{0});
-  EvolutionOutcome fit;
-  if (config.algorithm == Algorithm::kOutlierRejection) {
-    const OutlierRejection algorithm2(nearest, config.evolution, config.outlier,
-                                      config.num_threads);
-    const OutlierOutcome outcome = algorithm2.run(
-        rng, [&](const std::string& stage, int g, double best, const Extrinsic& e,
-                 std::uint64_t evals) { return report(stage, g, generations, best, e, evals); });
-    fit = outcome.final_fit;
-    result.inliers = outcome.inliers;
-    result.outlier_fits_accepted = outcome.fits_accepted;
-    result.evaluations = outcome.evaluations;
-    result.stopped = outcome.stopped;
-    used.clear();
-    for (std::size_t i = 0; i < pairs.size(); ++i) {
-      if (outcome.inliers[i]) used.push_back(i);
-    }
-  } else {
-    const EvolutionaryOptimizer algorithm1(nearest, config.evolution, config.num_threads);
-    fit = algorithm1.run(used, rng, [&](int g, double best, const Extrinsic& e,
-                                        std::uint64_t evals) {
-      return report("plain_fit", g, generations, best, e, evals);
-    });
-    result.inliers.assign(pairs.size(), true);
-    result.evaluations = fit.evaluations;
-    result.stopped = fit.stopped;
-  }
-  result.evolution_extrinsic = fit.best;
-  result.evolution_loss = nearest.loss(fit.best, used);
-  result.extrinsic = fit.best;
-
-  const LossEvaluator bilinear = nearest.withPixelRule(PixelRule::kBilinear);
+  std::vector<std::size_t> used = evolve(nearest, config, rng, report, result);
   if (config.refine.mode == RefineMode::kLocal && !result.stopped) {
-    const LocalRefinement refinement(bilinear, config.refine, config.num_threads);
-    // Algorithm 2 can keep a mismatched pair (equal counts, different people) when neither of
-    // its subset fits is accepted; one such pair pulls the optimum by decimetres. So the
-    // refinement alternates: refine on the current inliers, then re-select the inliers among
-    // ALL collected pairs with the paper's own test (Eq. 1 <= threshold_sample), keeping at least
-    // the better half, until the set no longer changes. Pairs with people cut by the image
-    // border are left out of the re-selection (refine.exclude_truncated).
-    const std::vector<std::size_t> candidates =
-        refinementCandidates(nearest, config.refine.exclude_truncated);
-    if (!config.refine.reselect_inliers) {
-      // One refinement on Algorithm 2's inliers, less the excluded pairs.
-      std::vector<std::size_t> kept;
-      std::set_intersection(used.begin(), used.end(), candidates.begin(), candidates.end(),
-                            std::back_inserter(kept));
-      if (!kept.empty()) used = kept;
-    }
-    constexpr int kMaxInlierRounds = 5;
-    for (int round = 1; round <= kMaxInlierRounds; ++round) {
-      evaluations_before_stage = result.evaluations;
-      const std::string round_name = "refine " + std::to_string(round);
-      result.history.push_back({round_name, 0, bilinear.loss(result.extrinsic, used),
-                                evaluations_before_stage});
-      const RefineOutcome refined = refinement.run(
-          result.extrinsic, used,
-          [&](int iteration, double loss, const Extrinsic& e, std::uint64_t evals) {
-            return report("refine", iteration, 0, loss, e, evals, round_name);
-          });
-      result.extrinsic = refined.best;
-      result.evaluations += refined.evaluations;
-      result.stopped = refined.stopped;
-      if (result.stopped || !config.refine.reselect_inliers) break;
-      const std::vector<std::size_t> reselected =
-          selectInliers(nearest, result.extrinsic, config.outlier.threshold_px, candidates);
-      if (reselected == used) break;
-      used = reselected;
-    }
-    result.inliers.assign(pairs.size(), false);
-    for (std::size_t i : used) result.inliers[i] = true;
+    used = refine(nearest, config, std::move(used), report, result);
   }
 
   // The search explores rotation vectors up to |r| = sqrt(3) * 3.5 rad; report the same
   // rotation with its angle in [0, pi] so files and logs read naturally.
   result.extrinsic.rotation_vector = matrixToRodrigues(result.extrinsic.rotationMatrix());
-  result.evolution_extrinsic.rotation_vector =
-      matrixToRodrigues(result.evolution_extrinsic.rotationMatrix());
+  result.evolution_extrinsic.rotation_vector = matrixToRodrigues(result.evolution_extrinsic.rotationMatrix());
+  const LossEvaluator final_nearest = at(nearest, result.time_offset_s);
   result.pairs_used = used.size();
-  result.loss = nearest.loss(result.extrinsic, used);
-  result.loss_bilinear = bilinear.loss(result.extrinsic, used);
+  result.loss = final_nearest.loss(result.extrinsic, used);
+  result.loss_bilinear = final_nearest.withPixelRule(PixelRule::kBilinear).loss(result.extrinsic, used);
+  result.loss_without_timing =
+      timing.mode == TimeOffsetMode::kNone
+          ? result.loss
+          : LossEvaluator(camera, pairs, LossConfig{config.behind_camera_penalty_c1, PixelRule::kNearest})
+                .loss(result.extrinsic, used);
   result.pair_losses.resize(pairs.size());
   for (std::size_t i = 0; i < pairs.size(); ++i) {
-    result.pair_losses[i] = nearest.pairLoss(i, result.extrinsic);
+    result.pair_losses[i] = final_nearest.pairLoss(i, result.extrinsic);
   }
-  result.points_projected = nearest.pointsEvaluated();
-  result.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  // Evaluators at another offset count their own points; the others share nearest's count.
+  result.points_projected = nearest.pointsEvaluated() +
+                            (timing.mode == TimeOffsetMode::kNone ? 0 : final_nearest.pointsEvaluated());
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return result;
 }
 

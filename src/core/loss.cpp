@@ -1,5 +1,7 @@
 #include "thermal_lidar_calibration/core/loss.hpp"
 
+#include "thermal_lidar_calibration/core/person_timing.hpp"
+
 #include "loss_kernels.hpp"
 #include "threads.hpp"
 
@@ -22,7 +24,8 @@ using Params = std::array<float, 12>;
 // pair, so the pair's points and distance map stay in cache.
 constexpr std::size_t kCandidateBlock = 16;
 
-kernels::MapView viewOf(const DistanceMap& d) {
+kernels::MapView viewOf(const std::shared_ptr<const DistanceMap>& map) {
+  const DistanceMap& d = *map;
   return {d.data(), d.width(), static_cast<float>(d.x0()), static_cast<float>(d.y0()),
           static_cast<float>(d.x0() + d.width() - 1), static_cast<float>(d.y0() + d.height() - 1)};
 }
@@ -33,24 +36,60 @@ kernels::Points pointsOf(const PreparedPair& p) {
 
 }  // namespace
 
-PreparedPair::PreparedPair(const CalibrationPair& pair) : distance(pair.mask) {
-  x.reserve(pair.points.size());
-  y.reserve(pair.points.size());
-  z.reserve(pair.points.size());
-  for (const Eigen::Vector3f& p : pair.points) {
-    x.push_back(p.x());
-    y.push_back(p.y());
-    z.push_back(p.z());
-    centre += p.cast<double>();
-  }
+PreparedPair::PreparedPair(const CalibrationPair& pair, std::optional<double> time_offset_s)
+    : distance(std::make_shared<const DistanceMap>(pair.mask)) {
   count = pair.points.size();
   const std::size_t padded = (count + kernels::kPointBlock - 1) / kernels::kPointBlock * kernels::kPointBlock;
-  x.resize(padded, 0.0f);
-  y.resize(padded, 0.0f);
-  z.resize(padded, 0.0f);
-  if (!pair.points.empty()) centre /= static_cast<double>(pair.points.size());
-  for (const Eigen::Vector3f& p : pair.points) {
-    radius = std::max(radius, (p.cast<double>() - centre).norm());
+  x.assign(padded, 0.0f);
+  y.assign(padded, 0.0f);
+  z.assign(padded, 0.0f);
+  const bool moving = time_offset_s && hasMeasuredMotion(pair);
+  if (!moving) {
+    for (std::size_t i = 0; i < count; ++i) {
+      x[i] = pair.points[i].x();
+      y[i] = pair.points[i].y();
+      z[i] = pair.points[i].z();
+    }
+    bound();
+    return;
+  }
+  const std::vector<Eigen::Vector3f> base = pointsAtImageTime(pair, 0.0);
+  base_x.resize(count);
+  base_y.resize(count);
+  base_z.resize(count);
+  vx.resize(count);
+  vy.resize(count);
+  vz.resize(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    base_x[i] = base[i].x();
+    base_y[i] = base[i].y();
+    base_z[i] = base[i].z();
+    vx[i] = pair.point_velocity[i].x();
+    vy[i] = pair.point_velocity[i].y();
+    vz[i] = pair.point_velocity[i].z();
+  }
+  moveTo(*time_offset_s);
+}
+
+void PreparedPair::moveTo(double time_offset_s) {
+  if (base_x.empty()) return;  // no motion: the points stay where they were captured
+  const float d = static_cast<float>(time_offset_s);
+  for (std::size_t i = 0; i < count; ++i) {
+    x[i] = base_x[i] + d * vx[i];
+    y[i] = base_y[i] + d * vy[i];
+    z[i] = base_z[i] + d * vz[i];
+  }
+  bound();
+}
+
+void PreparedPair::bound() {
+  centre.setZero();
+  radius = 0.0;
+  if (count == 0) return;
+  for (std::size_t i = 0; i < count; ++i) centre += Eigen::Vector3d(x[i], y[i], z[i]);
+  centre /= static_cast<double>(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    radius = std::max(radius, (Eigen::Vector3d(x[i], y[i], z[i]) - centre).norm());
   }
 }
 
@@ -112,7 +151,7 @@ LossEvaluator::LossEvaluator(const CameraModel& camera, const std::vector<Calibr
                                   std::to_string(camera_.height));
     }
     try {
-      impl_->pairs.emplace_back(p);
+      impl_->pairs.emplace_back(p, config_.time_offset_s);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(where + e.what());
     }
@@ -140,10 +179,31 @@ LossEvaluator LossEvaluator::withPixelRule(PixelRule rule) const {
   return LossEvaluator(camera_, config, impl_);
 }
 
+LossEvaluator LossEvaluator::withTimeOffset(double time_offset_s) const {
+  if (!config_.time_offset_s) throw std::logic_error("loss: withTimeOffset on an evaluator without a time offset");
+  LossConfig config = config_;
+  config.time_offset_s = time_offset_s;
+  auto impl = std::make_shared<Impl>();
+  impl->pairs = impl_->pairs;  // copies the points, shares the distance maps
+  for (PreparedPair& pair : impl->pairs) pair.moveTo(time_offset_s);
+  impl->lens = impl_->lens;
+  impl->distorted = impl_->distorted;
+  impl->penalty = impl_->penalty;
+  impl->K = impl_->K;
+  return LossEvaluator(camera_, config, impl);
+}
+
+bool LossEvaluator::hasMotion() const {
+  for (const PreparedPair& p : impl_->pairs) {
+    if (!p.base_x.empty()) return true;
+  }
+  return false;
+}
+
 std::size_t LossEvaluator::pairCount() const { return impl_->pairs.size(); }
 
 bool LossEvaluator::maskTouchesImageBorder(std::size_t pair) const {
-  const DistanceMap& d = impl_->pairs.at(pair).distance;
+  const DistanceMap& d = *impl_->pairs.at(pair).distance;
   return d.x0() <= 0 || d.y0() <= 0 || d.x0() + d.width() >= camera_.width ||
          d.y0() + d.height() >= camera_.height;
 }

@@ -7,6 +7,7 @@ namespace thermal_lidar_calibration {
 
 void QualityConfig::validate() const {
   uncertainty.validate();
+  time_offset.validate();
   coverage.validate();
   verdict.validate();
 }
@@ -33,12 +34,19 @@ QualityAssessment assessQuality(const CameraModel& camera,
   const std::vector<std::size_t> used = usedPairs(result);
   QualityAssessment q;
   q.coverage = computeCoverage(camera, pairs, used, result.extrinsic, config.coverage);
+  // The pairs at the fit's time offset (issue 21): the bootstrap refines it too when it was
+  // estimated.
+  const bool timed = result.time_offset_mode != TimeOffsetMode::kNone;
   const LossEvaluator loss(camera, pairs,
-                           LossConfig{behind_camera_penalty_c1, PixelRule::kBilinear});
+                           LossConfig{behind_camera_penalty_c1, PixelRule::kBilinear,
+                                      timed ? std::optional<double>(result.time_offset_s) : std::nullopt});
   if (config.uncertainty_enabled && used.size() >= 3) {
-    q.uncertainty = estimateUncertainty(loss, result.extrinsic, used, config.uncertainty, callback);
+    const bool estimated = result.time_offset_mode == TimeOffsetMode::kEstimate;
+    q.uncertainty = estimateUncertainty(loss, result.extrinsic, used, config.uncertainty, callback,
+                                        estimated ? std::optional<TimeOffsetConfig>(config.time_offset) : std::nullopt);
   }
-  q.verdict = judgeQuality(q.coverage, q.uncertainty, config.verdict, result.loss);
+  q.timing = assessTiming(camera, pairs, result, q.uncertainty, config.time_offset, behind_camera_penalty_c1);
+  q.verdict = judgeQuality(q.coverage, q.uncertainty, config.verdict, result.loss, q.timing);
   if (reference && !used.empty()) {
     q.reference = compareWithReference(loss, result.extrinsic, *reference, used, q.uncertainty);
   }

@@ -13,6 +13,7 @@
 #include "thermal_lidar_calibration/core/local_refinement.hpp"
 #include "thermal_lidar_calibration/core/pose_difference.hpp"
 #include "thermal_lidar_calibration/core/random.hpp"
+#include "thermal_lidar_calibration/core/timed_refinement.hpp"
 #include "threads.hpp"
 
 namespace thermal_lidar_calibration {
@@ -75,6 +76,23 @@ void summarise(Uncertainty& u) {
     const double half = std::max(std::abs(u.lower[k]), std::abs(u.upper[k]));
     (k < 3 ? u.rotation_deg[k] : u.translation_cm[k - 3]) = half;
   }
+  if (!u.timed) return;
+  const std::vector<double>& d = u.time_offset_deviations_ms;
+  u.time_offset_lower_ms = quantile(d, tail);
+  u.time_offset_upper_ms = quantile(d, 1.0 - tail);
+  u.time_offset_ms = std::max(std::abs(u.time_offset_lower_ms), std::abs(u.time_offset_upper_ms));
+  const double mean = std::accumulate(d.begin(), d.end(), 0.0) / static_cast<double>(d.size());
+  double sdd = 0.0;
+  for (double v : d) sdd += (v - mean) * (v - mean);
+  u.time_offset_std_ms = std::sqrt(sdd / static_cast<double>(d.size() - 1));
+  for (int axis = 0; axis < 3; ++axis) {
+    double sxy = 0.0;
+    for (std::size_t b = 0; b < d.size(); ++b) {
+      sxy += (d[b] - mean) * (u.deviations[b][3 + axis] - u.mean[3 + axis]);
+    }
+    const double denominator = std::sqrt(sdd) * u.std_dev[3 + axis] * std::sqrt(static_cast<double>(d.size() - 1));
+    u.time_translation_correlation[axis] = denominator > 0.0 ? sxy / denominator : 0.0;
+  }
 }
 
 }  // namespace
@@ -98,6 +116,8 @@ void UncertaintyConfig::validate() const {
   requireRange("uncertainty_min_step_rot_rad", min_step_rot_rad, 0.0, initial_step_rot_rad, true);
   requireRange("uncertainty_min_step_trans_m", min_step_trans_m, 0.0, initial_step_trans_m, true);
   requireRange("uncertainty_max_evaluations", max_evaluations, 1, 1e8, false);
+  requireRange("uncertainty_initial_step_time_s", initial_step_time_s, 0.0, 1.0, true);
+  requireRange("uncertainty_min_step_time_s", min_step_time_s, 0.0, 1.0, true);
 }
 
 std::vector<std::size_t> resamplePairs(const std::vector<std::size_t>& pairs, int block_pairs,
@@ -120,7 +140,8 @@ std::string Uncertainty::method() const {
 Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& estimate,
                                 const std::vector<std::size_t>& pairs,
                                 const UncertaintyConfig& config,
-                                const UncertaintyCallback& callback) {
+                                const UncertaintyCallback& callback,
+                                const std::optional<TimeOffsetConfig>& timing) {
   const auto started = std::chrono::steady_clock::now();
   config.validate();
   if (pairs.size() < 3) {
@@ -129,6 +150,9 @@ Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& esti
   }
   for (std::size_t i : pairs) {
     if (i >= loss.pairCount()) throw std::invalid_argument("uncertainty: pair index out of range");
+  }
+  if (timing && !loss.config().time_offset_s) {
+    throw std::invalid_argument("uncertainty: a time offset to refine needs an evaluator with one");
   }
   const LossEvaluator bilinear = loss.withPixelRule(PixelRule::kBilinear);
   RefineConfig refine;
@@ -140,9 +164,19 @@ Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& esti
   // One thread per resample: a resample's refinement evaluates 12 probes at a time, too few to
   // share well, while the resamples are independent.
   const LocalRefinement refinement(bilinear, refine, 1);
+  std::optional<TimedRefinement> timed;
+  double offset_s = 0.0;
+  if (timing) {
+    TimeOffsetConfig steps = *timing;
+    steps.initial_step_s = config.initial_step_time_s;
+    steps.min_step_s = std::min(config.min_step_time_s, steps.initial_step_s);
+    timed.emplace(bilinear, refine, steps, 1);
+    offset_s = *loss.config().time_offset_s;
+  }
 
   const int total = config.resamples;
   std::vector<Vector6d> deviations(static_cast<std::size_t>(total));
+  std::vector<double> offset_deviations(static_cast<std::size_t>(total), 0.0);
   std::vector<char> done(static_cast<std::size_t>(total), 0);
   std::vector<std::uint64_t> evaluations(static_cast<std::size_t>(total), 0);
   std::atomic<bool> stop{false};
@@ -151,12 +185,20 @@ Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& esti
 #pragma omp parallel for schedule(dynamic, 1) num_threads(team)
   for (int b = 0; b < total; ++b) {
     if (stop.load()) continue;
+    const std::size_t k = static_cast<std::size_t>(b);
     const std::vector<std::size_t> resample =
         resamplePairs(pairs, config.block_pairs, config.seed, b);
-    const RefineOutcome out = refinement.run(estimate, resample);
-    deviations[static_cast<std::size_t>(b)] = asVector(poseDifference(out.best, estimate));
-    evaluations[static_cast<std::size_t>(b)] = out.evaluations;
-    done[static_cast<std::size_t>(b)] = 1;
+    if (timed) {
+      const TimedRefineOutcome out = timed->run(estimate, offset_s, resample);
+      deviations[k] = asVector(poseDifference(out.best, estimate));
+      offset_deviations[k] = 1000.0 * (out.time_offset_s - offset_s);
+      evaluations[k] = out.evaluations;
+    } else {
+      const RefineOutcome out = refinement.run(estimate, resample);
+      deviations[k] = asVector(poseDifference(out.best, estimate));
+      evaluations[k] = out.evaluations;
+    }
+    done[k] = 1;
     const int n = ++finished;
     if (callback) {
 #pragma omp critical(tlc_uncertainty_callback)
@@ -169,9 +211,11 @@ Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& esti
   u.confidence = config.confidence;
   u.pairs = pairs.size();
   u.stopped = stop.load();
+  u.timed = timing.has_value();
   for (int b = 0; b < total; ++b) {
     if (!done[static_cast<std::size_t>(b)]) continue;
     u.deviations.push_back(deviations[static_cast<std::size_t>(b)]);
+    if (u.timed) u.time_offset_deviations_ms.push_back(offset_deviations[static_cast<std::size_t>(b)]);
     u.evaluations += evaluations[static_cast<std::size_t>(b)];
   }
   u.resamples = static_cast<int>(u.deviations.size());

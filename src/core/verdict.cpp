@@ -76,6 +76,47 @@ void judgeUncertainty(const Uncertainty& u, const VerdictConfig& c, std::vector<
   }
 }
 
+// Issue 21: timing findings come before the data-volume ones of the same level, so a user whose
+// stamps are off is told so rather than to collect more pairs.
+void judgeTiming(const TimingAssessment& t, const VerdictConfig& c, std::vector<Finding>& out) {
+  const std::string what_to_do =
+      ": vary the speed (stop and start), turn while people are in view, or have people walk "
+      "across the view; or measure the offset and set time_offset_mode fixed with time_offset_s";
+  if (t.mode == TimeOffsetMode::kEstimate) {
+    if (!(t.resolution_ms <= c.good_time_resolution_ms)) {
+      const bool hopeless = !(t.resolution_ms <= c.usable_time_offset_ms);
+      out.push_back({hopeless ? Verdict::kCollectMore : Verdict::kUsable,
+                     (std::isfinite(t.resolution_ms)
+                          ? format("timing: this drive resolves the camera's time offset only to +-%.3g ms "
+                                   "(good <= %.3g)",
+                                   t.resolution_ms, c.good_time_resolution_ms)
+                          : std::string("timing: this drive cannot tell the camera's time offset at all")) +
+                         ", so a late camera and one mounted further along the direction of travel look "
+                         "alike (the estimated offset and translation along the travel are uncertain)" +
+                         what_to_do});
+    }
+    if (t.halfwidth_ms && *t.halfwidth_ms > c.good_time_offset_ms) {
+      out.push_back({*t.halfwidth_ms > c.usable_time_offset_ms ? Verdict::kCollectMore : Verdict::kUsable,
+                     format("timing: the time offset %.1f ms is uncertain by +-%.1f ms (good <= %.3g)",
+                            1000.0 * t.time_offset_s, *t.halfwidth_ms, c.good_time_offset_ms) +
+                         what_to_do});
+    }
+    return;
+  }
+  if (!t.probe_offset_s) return;
+  const double moved_ms = 1000.0 * std::abs(*t.probe_offset_s - t.time_offset_s);
+  const double gain = t.fit_loss > 0.0 ? 1.0 - t.probe_loss / t.fit_loss : 0.0;
+  if (moved_ms >= c.timing_probe_ms && gain >= c.timing_min_gain) {
+    out.push_back({Verdict::kCollectMore,
+                   format("timing: the residuals follow the people's motion: the image and scan stamps "
+                          "look %.0f ms apart (the fit's loss falls by %.0f %% there), so the result is "
+                          "off along the direction of travel",
+                          1000.0 * *t.probe_offset_s, 100.0 * gain) +
+                       ": set time_offset_mode estimate, or fix the camera driver's time offset (or "
+                       "time_offset_s with time_offset_mode fixed)"});
+  }
+}
+
 void judgeCoverage(const Coverage& cov, const VerdictConfig& c, std::vector<Finding>& out,
                    std::vector<std::string>& missing) {
   const double pairs = static_cast<double>(cov.pairs);
@@ -144,6 +185,13 @@ void VerdictConfig::validate() const {
   requireRange("quality_good_distinct_positions", good_distinct_positions, 0, 1e6);
   requireRange("quality_usable_distinct_positions", usable_distinct_positions, 0, 1e6);
   requireRange("quality_max_loss_px", max_loss_px, 0.0, 1e6);
+  requireRange("quality_good_time_offset_ms", good_time_offset_ms, 0.0, 1e4);
+  requireRange("quality_usable_time_offset_ms", usable_time_offset_ms, 0.0, 1e4);
+  requireRange("quality_good_time_resolution_ms", good_time_resolution_ms, 0.0, 1e4);
+  requireRange("quality_timing_probe_ms", timing_probe_ms, 0.0, 1e4);
+  requireRange("quality_timing_min_gain", timing_min_gain, 0.0, 1.0);
+  requireOrder("quality_good_time_offset_ms", good_time_offset_ms, "quality_usable_time_offset_ms",
+               usable_time_offset_ms, true);
   requireOrder("quality_good_rotation_deg", good_rotation_deg, "quality_usable_rotation_deg",
                usable_rotation_deg, true);
   requireOrder("quality_good_translation_cm", good_translation_cm, "quality_usable_translation_cm",
@@ -156,7 +204,8 @@ void VerdictConfig::validate() const {
 }
 
 VerdictReport judgeQuality(const Coverage& coverage, const std::optional<Uncertainty>& uncertainty,
-                           const VerdictConfig& config, std::optional<double> fit_loss_px) {
+                           const VerdictConfig& config, std::optional<double> fit_loss_px,
+                           const std::optional<TimingAssessment>& timing) {
   config.validate();
   std::vector<Finding> findings;
   VerdictReport report;
@@ -169,6 +218,7 @@ VerdictReport judgeQuality(const Coverage& coverage, const std::optional<Uncerta
              ": the pairs disagree (the image and the cloud show different objects) or the search "
              "failed; check the detections and lidar_min/max_azimuth_deg, then collect more"});
   }
+  if (timing) judgeTiming(*timing, config, findings);
   judgeCoverage(coverage, config, findings, report.missing_regions);
   if (uncertainty && uncertainty->resamples >= 2) {
     judgeUncertainty(*uncertainty, config, findings);

@@ -57,11 +57,30 @@ struct RefineConfig {
   void validate() const;
 };
 
+// Issue 21: the camera-LiDAR time offset delta (time_offset_s, INTERFACE.md): the image stamped t
+// was captured at t + delta on the LiDAR's clock. Beyond the paper: the paper mode (refine none)
+// never moves points in time, whatever the mode says.
+enum class TimeOffsetMode : std::uint8_t { kEstimate, kFixed, kNone };
+const char* toString(TimeOffsetMode mode);  // "estimate", "fixed", "none"
+
+struct TimeOffsetConfig {
+  TimeOffsetMode mode = TimeOffsetMode::kEstimate;
+  double offset_s = 0.0;  // fixed: the known delta; estimate: where the search starts
+  double max_s = 0.2;     // estimate: delta is searched within [-max_s, max_s]
+  // The coarse search refines the pose at every step across the range before the joint
+  // refinement: 10 ms is 2 cm of travel at 2 m/s, well inside the refinement's reach.
+  double coarse_step_s = 0.01;
+  double initial_step_s = 0.005;  // the joint refinement's first delta probe
+  double min_step_s = 1e-5;       // and its smallest
+  void validate() const;
+};
+
 struct CalibrationConfig {
   Algorithm algorithm = Algorithm::kOutlierRejection;
   EvolutionConfig evolution;
   OutlierConfig outlier;
   RefineConfig refine;
+  TimeOffsetConfig time_offset;
   double behind_camera_penalty_c1 = 5.0;  // c1 of Eq. (2)
   std::uint64_t seed = 1;
   int num_threads = 0;  // 0 = all cores; results do not depend on it

@@ -1,6 +1,8 @@
 #pragma once
 // One kept (person mask, LiDAR person points) pair: what the gate keeps and the optimizer uses.
 
+#include "thermal_lidar_calibration/core/person_motion.hpp"
+
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
@@ -20,6 +22,11 @@ struct Frame {
   std::vector<Eigen::Vector3f> points;  // finite cluster points, LiDAR frame, metres
   std::vector<std::int32_t> labels;     // one label per point: one label per person
   std::size_t nonfinite_points_dropped = 0;  // NaN/inf points removed while decoding
+  double cloud_stamp_s = 0.0;           // stamp of the clusters (the image's may differ)
+  std::vector<float> point_time_s;      // per point, relative to cloud_stamp_s; empty: none
+  // Per point, relative to the LiDAR (m/s), when the source already measured it (a dataset bag
+  // written by the node); empty otherwise.
+  std::vector<Eigen::Vector3f> point_velocity;
 };
 
 // A pair in the dataset D of the paper.
@@ -30,6 +37,14 @@ struct CalibrationPair {
   std::vector<Eigen::Vector3f> points;  // P^h, LiDAR frame
   std::vector<std::int32_t> labels;     // kept for dataset bags and overlays
   int people = 0;                       // people count agreed by both modalities
+  // Timing (issue 21). Point i was captured at cloud_stamp_s + point_time_s[i] (at cloud_stamp_s
+  // when point_time_s is empty) and moves at point_velocity[i] relative to the LiDAR (empty: not
+  // measured); the image was captured at stamp_s + delta. So at the image's instant the point
+  // was at p + v (stamp_s + delta - cloud_stamp_s - point_time_s[i]) (person_timing.hpp).
+  double cloud_stamp_s = 0.0;
+  std::vector<float> point_time_s;
+  std::vector<Eigen::Vector3f> point_velocity;
+  std::vector<PersonMotion> motion;     // per person (label) of the pair: how it was measured
 };
 
 }  // namespace thermal_lidar_calibration

@@ -55,6 +55,17 @@ struct CalibrationResult {
   // comparable within a stage, not across stages.
   std::vector<ConvergenceStep> history;
   double seconds = 0.0;             // wall time of calibrate()
+  // Issue 21: the camera time offset the result holds (INTERFACE.md, time_offset_s).
+  TimeOffsetMode time_offset_mode = TimeOffsetMode::kNone;  // as applied
+  double time_offset_s = 0.0;       // estimated or fixed; 0 when none was applied
+  std::string time_offset_note;     // why the applied mode differs from the one asked for
+  std::size_t pairs_with_motion = 0;  // pairs whose people's motion was measured
+  // The coarse search (mode estimate): each grid offset and the loss after refining the pose
+  // there (bilinear rule, on the pairs then used).
+  std::vector<double> time_offset_profile_s, time_offset_profile_loss;
+  // The loss with the points where they were captured (no time offset), to show what timing
+  // changed; equal to `loss` with time_offset_mode none.
+  double loss_without_timing = 0.0;
 };
 
 // Throws std::invalid_argument on an invalid config, no pairs, too few pairs for Algorithm 2

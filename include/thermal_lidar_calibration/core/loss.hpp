@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace thermal_lidar_calibration {
@@ -20,20 +21,34 @@ enum class PixelRule : std::uint8_t {
 };
 
 struct LossConfig {
+  LossConfig() = default;
+  LossConfig(double c1, PixelRule rule, std::optional<double> time_offset = std::nullopt)
+      : behind_camera_penalty_c1(c1), pixel_rule(rule), time_offset_s(time_offset) {}
   double behind_camera_penalty_c1 = 5.0;  // c1 of Eq. 2: z <= 0 scores c1 * max(h, w)
   PixelRule pixel_rule = PixelRule::kNearest;
+  // Issue 21: nullopt scores the points where they were captured (the paper; pairs without
+  // measured motion always). A value delta moves each point with its person's motion to the
+  // instant the image was captured, stamp + delta (person_timing.hpp).
+  std::optional<double> time_offset_s;
   void validate() const;
 };
 
 // Points of one pair in float32 structure-of-arrays form plus its distance map. The arrays are
-// zero-padded to a multiple of 8 so the vector kernels never copy a partial last block.
+// zero-padded to a multiple of 8 so the vector kernels never copy a partial last block. With a
+// time offset, x, y, z are the points at the image's instant (base + delta * velocity); the
+// base and velocity arrays let another delta be applied without rebuilding the distance map.
 struct PreparedPair {
   std::vector<float> x, y, z;  // padded; the first `count` entries are the points
   std::size_t count = 0;
-  DistanceMap distance;
+  std::shared_ptr<const DistanceMap> distance;  // shared by the evaluators of other offsets
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // bounding sphere of the points
   double radius = 0.0;
-  explicit PreparedPair(const CalibrationPair& pair);
+  // With motion: the points at the image stamp (delta = 0) and their velocities, unpadded.
+  std::vector<float> base_x, base_y, base_z, vx, vy, vz;
+  PreparedPair(const CalibrationPair& pair, std::optional<double> time_offset_s);
+  void moveTo(double time_offset_s);  // x, y, z, centre, radius at another delta
+ private:
+  void bound();
 };
 
 class LossEvaluator {
@@ -47,6 +62,11 @@ class LossEvaluator {
 
   // The same pairs and distance maps read with another pixel rule (shares the prepared data).
   LossEvaluator withPixelRule(PixelRule rule) const;
+  // The same pairs with their points moved to another camera time offset (shares the distance
+  // maps; copies and moves the points). Throws std::logic_error without a time offset.
+  LossEvaluator withTimeOffset(double time_offset_s) const;
+  // Whether some pair has measured motion (a time offset then moves points).
+  bool hasMotion() const;
 
   std::size_t pairCount() const;
   // True when pair i's people touch the image border: the mask shows only part of someone the

@@ -11,6 +11,7 @@
 #include "thermal_lidar_calibration/core/camera_model.hpp"
 #include "thermal_lidar_calibration/core/coverage.hpp"
 #include "thermal_lidar_calibration/core/reference_comparison.hpp"
+#include "thermal_lidar_calibration/core/timing_check.hpp"
 #include "thermal_lidar_calibration/core/uncertainty.hpp"
 #include "thermal_lidar_calibration/core/verdict.hpp"
 
@@ -21,6 +22,7 @@ struct QualityConfig {
   UncertaintyConfig uncertainty;    // its seed and threads are normally the calibration's
   CoverageConfig coverage;
   VerdictConfig verdict;
+  TimeOffsetConfig time_offset;  // the fit's time offset settings (normally the calibration's)
   void validate() const;
 };
 
@@ -29,6 +31,7 @@ struct QualityAssessment {
   Coverage coverage;
   VerdictReport verdict;
   std::optional<ReferenceComparison> reference;
+  std::optional<TimingAssessment> timing;  // when the used pairs' motion was measured
 };
 
 // `pairs` and `result` as given to / returned by calibrate(). `reference`: a transform the user

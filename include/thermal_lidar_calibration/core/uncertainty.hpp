@@ -12,9 +12,11 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "thermal_lidar_calibration/core/calibration_config.hpp"
 #include "thermal_lidar_calibration/core/calibration_pair.hpp"
 #include "thermal_lidar_calibration/core/camera_model.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
@@ -41,6 +43,9 @@ struct UncertaintyConfig {
   double min_step_rot_rad = 1e-5;
   double min_step_trans_m = 1e-5;
   int max_evaluations = 4000;  // per resample
+  // With the time offset estimated (issue 21), each resample also refines it.
+  double initial_step_time_s = 0.002;
+  double min_step_time_s = 1e-5;
   // A cheaper setting for windows and checks while collecting: 30 resamples, coarser stop.
   static UncertaintyConfig quick();
   void validate() const;  // throws std::invalid_argument naming the key and range
@@ -60,6 +65,14 @@ struct Uncertainty {
   double confidence = 0.95;
   std::size_t pairs = 0;          // pairs resampled
   std::uint64_t evaluations = 0;  // loss evaluations, all resamples
+  // Issue 21: with the time offset estimated, each resample refined it too.
+  bool timed = false;
+  double time_offset_ms = 0.0;  // half-width, as rotation_deg / translation_cm
+  double time_offset_lower_ms = 0.0, time_offset_upper_ms = 0.0, time_offset_std_ms = 0.0;
+  std::vector<double> time_offset_deviations_ms;  // one per resample
+  // Correlation of the resampled time offsets with the translations along camera x, y, z: near
+  // +-1 where the drive cannot tell a late camera from one mounted further along its travel.
+  Eigen::Vector3d time_translation_correlation = Eigen::Vector3d::Zero();
   double seconds = 0.0;
   bool stopped = false;        // the callback asked to stop; fewer resamples
   std::string method() const;  // "bootstrap over pairs, 100 resamples" (block: "...")
@@ -73,11 +86,14 @@ using UncertaintyCallback = std::function<bool(int done, int total)>;
 
 // `loss` supplies the pairs and camera (its pixel rule is replaced by the sub-pixel one);
 // `pairs` are indices into it, in time order (duplicates allowed), at least 3.
+// With `timing` (the time offset was estimated), `loss` must be at the estimated offset and each
+// resample refines the offset too, within timing->max_s.
 // Throws std::invalid_argument on a bad config or too few pairs.
 Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& estimate,
                                 const std::vector<std::size_t>& pairs,
                                 const UncertaintyConfig& config,
-                                const UncertaintyCallback& callback = {});
+                                const UncertaintyCallback& callback = {},
+                                const std::optional<TimeOffsetConfig>& timing = std::nullopt);
 // Resample `index` of a bootstrap with `seed`: pairs.size() entries of `pairs` drawn with
 // replacement, in runs of `block_pairs` consecutive entries (the last run cut short).
 std::vector<std::size_t> resamplePairs(const std::vector<std::size_t>& pairs, int block_pairs,

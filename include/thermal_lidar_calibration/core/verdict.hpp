@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "thermal_lidar_calibration/core/coverage.hpp"
+#include "thermal_lidar_calibration/core/timing_check.hpp"
 #include "thermal_lidar_calibration/core/uncertainty.hpp"
 
 namespace thermal_lidar_calibration {
@@ -39,6 +40,16 @@ struct VerdictConfig {
   // masks (a fit of 0.03-0.2 px is typical; fits carried by mismatched pairs or a failed search
   // measured 2.6-24 px), whatever the intervals say.
   double max_loss_px = 1.0;
+  // Timing (issue 21). The estimated time offset's 95 % half-width, ms: good / usable.
+  double good_time_offset_ms = 5.0;
+  double usable_time_offset_ms = 20.0;
+  // The drive must resolve the offset to this (1 sigma, ms, timing_check.hpp) for a good
+  // verdict while estimating it; beyond usable_time_offset_ms it is collect_more.
+  double good_time_resolution_ms = 3.0;
+  // Offset not estimated: a joint refinement from the fit that moves the offset by at least this
+  // (ms) and lowers the loss by at least `timing_min_gain` (fraction) names timing.
+  double timing_probe_ms = 10.0;
+  double timing_min_gain = 0.1;
   void validate() const;  // throws std::invalid_argument naming the key and range
 };
 
@@ -53,7 +64,9 @@ struct VerdictReport {
 // `uncertainty` may be absent (while collecting, before a fit): then only coverage and pairs
 // decide, and the verdict is at best usable. `fit_loss_px`: the fit's Eq. 3 loss on the pairs it
 // used, when there is a fit.
+// `timing`: the fit's timing assessment, when the pairs' motion was measured.
 VerdictReport judgeQuality(const Coverage& coverage, const std::optional<Uncertainty>& uncertainty,
-                           const VerdictConfig& config, std::optional<double> fit_loss_px = std::nullopt);
+                           const VerdictConfig& config, std::optional<double> fit_loss_px = std::nullopt,
+                           const std::optional<TimingAssessment>& timing = std::nullopt);
 
 }  // namespace thermal_lidar_calibration

@@ -1,0 +1,235 @@
+#include "thermal_lidar_calibration/core/person_motion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+namespace thermal_lidar_calibration {
+namespace {
+
+// Once a person's own velocity is known, the next centroid is searched within this of where it
+// should be: a walker turning round or a vehicle braking moves less than this off the straight
+// line within the window, while people stand further apart than this (about 0.9 m at least).
+constexpr double kTrackedGateM = 0.6;
+
+struct Track {
+  std::vector<double> t;
+  std::vector<Eigen::Vector3d> c;
+  int misses = 0;  // consecutive scans without it, in the current direction
+  bool active = true;
+  int found = 0;   // scans found in the current direction
+};
+
+// Least-squares straight line through the centroids: velocity and its standard error.
+void fitLine(const Track& track, double centroid_noise_m, Eigen::Vector3d& velocity,
+             Eigen::Vector3d& std_error) {
+  const std::size_t n = track.t.size();
+  double tm = 0.0;
+  Eigen::Vector3d cm = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < n; ++i) {
+    tm += track.t[i];
+    cm += track.c[i];
+  }
+  tm /= static_cast<double>(n);
+  cm /= static_cast<double>(n);
+  double stt = 0.0;
+  Eigen::Vector3d stc = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < n; ++i) {
+    stt += (track.t[i] - tm) * (track.t[i] - tm);
+    stc += (track.t[i] - tm) * (track.c[i] - cm);
+  }
+  if (stt <= 0.0) {  // every centroid at one instant: no motion can be read
+    velocity.setZero();
+    std_error.setConstant(std::numeric_limits<double>::infinity());
+    return;
+  }
+  velocity = stc / stt;
+  // The residual spread with three or more scans, but never below half the centroid noise
+  // (three points on a line by chance would claim a perfect measurement); the noise alone with two.
+  Eigen::Vector3d sigma = Eigen::Vector3d::Constant(centroid_noise_m);
+  if (n >= 3) {
+    Eigen::Vector3d ss = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Eigen::Vector3d r = track.c[i] - (cm + velocity * (track.t[i] - tm));
+      ss += r.cwiseProduct(r);
+    }
+    sigma = (ss / static_cast<double>(n - 2)).cwiseSqrt().cwiseMax(0.5 * centroid_noise_m);
+  }
+  std_error = sigma / std::sqrt(stt);
+}
+
+Eigen::Vector3d predict(const Track& track, double t, const Eigen::Vector3d& common_shift,
+                        double common_dt, double centroid_noise_m) {
+  if (track.t.size() >= 2) {
+    Eigen::Vector3d v, se;
+    fitLine(track, centroid_noise_m, v, se);
+    // From the track's centroid nearest in time (the tracks grow in both directions).
+    std::size_t anchor = 0;
+    for (std::size_t i = 1; i < track.t.size(); ++i) {
+      if (std::abs(track.t[i] - t) < std::abs(track.t[anchor] - t)) anchor = i;
+    }
+    return track.c[anchor] + v * (t - track.t[anchor]);
+  }
+  const double scale = common_dt != 0.0 ? (t - track.t[0]) / common_dt : 0.0;
+  return track.c[0] + common_shift * scale;
+}
+
+// The shift most people of `from` show in `to`: the median of each one's nearest neighbour
+// within the gate (standing people all move by the vehicle's own motion; walkers deviate by a
+// few centimetres per scan). Zero when nobody has a neighbour.
+Eigen::Vector3d commonShift(const ScanPeople& from, const ScanPeople& to, double gate_m) {
+  std::vector<double> dx, dy, dz;
+  for (const auto& p : from.people) {
+    double best = gate_m;
+    const ScanPeople::Person* nearest = nullptr;
+    for (const auto& q : to.people) {
+      const double d = (q.centroid - p.centroid).norm();
+      if (d < best) {
+        best = d;
+        nearest = &q;
+      }
+    }
+    if (!nearest) continue;
+    const Eigen::Vector3d s = nearest->centroid - p.centroid;
+    dx.push_back(s.x());
+    dy.push_back(s.y());
+    dz.push_back(s.z());
+  }
+  if (dx.empty()) return Eigen::Vector3d::Zero();
+  const auto median = [](std::vector<double>& v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  return Eigen::Vector3d(median(dx), median(dy), median(dz));
+}
+
+}  // namespace
+
+void MotionConfig::validate() const {
+  const auto require = [](bool ok, const std::string& what) {
+    if (!ok) throw std::invalid_argument("motion: " + what);
+  };
+  require(window_scans >= 1 && window_scans <= 10, "motion_window_scans must be in [1, 10]");
+  require(max_speed_mps > 0.0 && max_speed_mps <= 100.0, "motion_max_speed_mps must be in (0, 100]");
+  require(max_gap_s > 0.0 && max_gap_s <= 5.0, "motion_max_gap_s must be in (0, 5]");
+  require(centroid_noise_m > 0.0 && centroid_noise_m <= 1.0, "centroid noise must be in (0, 1] m");
+}
+
+ScanPeople summariseScan(double stamp_s, const std::vector<Eigen::Vector3f>& points,
+                         const std::vector<std::int32_t>& labels,
+                         const std::vector<float>& point_time_s) {
+  if (labels.size() != points.size()) {
+    throw std::invalid_argument("scan: " + std::to_string(points.size()) + " points but " +
+                                std::to_string(labels.size()) + " labels");
+  }
+  const bool timed = !point_time_s.empty();
+  if (timed && point_time_s.size() != points.size()) {
+    throw std::invalid_argument("scan: " + std::to_string(points.size()) + " points but " +
+                                std::to_string(point_time_s.size()) + " point times");
+  }
+  struct Sum {
+    Eigen::Vector3d p = Eigen::Vector3d::Zero();
+    double t = 0.0;
+    int n = 0;
+  };
+  std::map<std::int32_t, Sum> sums;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    Sum& s = sums[labels[i]];
+    s.p += points[i].cast<double>();
+    s.t += timed ? static_cast<double>(point_time_s[i]) : 0.0;
+    ++s.n;
+  }
+  ScanPeople scan;
+  scan.stamp_s = stamp_s;
+  for (const auto& [label, s] : sums) {
+    ScanPeople::Person person;
+    person.label = label;
+    person.centroid = s.p / s.n;
+    person.time_s = stamp_s + s.t / s.n;
+    person.points = s.n;
+    scan.people.push_back(person);
+  }
+  return scan;
+}
+
+std::vector<PersonMotion> estimateMotion(const std::vector<ScanPeople>& scans, std::size_t centre,
+                                         const MotionConfig& config) {
+  config.validate();
+  if (centre >= scans.size()) throw std::invalid_argument("motion: scan index out of range");
+  const ScanPeople& own = scans[centre];
+  std::vector<Track> tracks(own.people.size());
+  for (std::size_t i = 0; i < own.people.size(); ++i) {
+    tracks[i].t.push_back(own.people[i].time_s);
+    tracks[i].c.push_back(own.people[i].centroid);
+  }
+
+  for (const int dir : {-1, 1}) {
+    for (Track& track : tracks) {
+      track.active = true;
+      track.misses = 0;
+      track.found = 0;
+    }
+    double last_stamp = own.stamp_s;
+    for (int step = 1;; ++step) {
+      const long j = static_cast<long>(centre) + dir * step;
+      if (j < 0 || j >= static_cast<long>(scans.size())) break;
+      const ScanPeople& scan = scans[static_cast<std::size_t>(j)];
+      if (std::abs(scan.stamp_s - last_stamp) > config.max_gap_s) break;  // a hole in the scans
+      last_stamp = scan.stamp_s;
+      const double dt = scan.stamp_s - own.stamp_s;
+      const Eigen::Vector3d shift =
+          commonShift(own, scan, config.max_speed_mps * std::abs(dt) + kTrackedGateM);
+
+      // Every (active person, candidate) within its gate, nearest first, assigned one to one.
+      struct Option {
+        double distance;
+        std::size_t track, candidate;
+      };
+      std::vector<Option> options;
+      bool any_active = false;
+      for (std::size_t i = 0; i < tracks.size(); ++i) {
+        if (!tracks[i].active) continue;
+        any_active = true;
+        for (std::size_t k = 0; k < scan.people.size(); ++k) {
+          const ScanPeople::Person& q = scan.people[k];
+          const Eigen::Vector3d at = predict(tracks[i], q.time_s, shift, dt, config.centroid_noise_m);
+          const double d = (q.centroid - at).norm();
+          if (d <= kTrackedGateM) options.push_back({d, i, k});
+        }
+      }
+      if (!any_active) break;
+      std::sort(options.begin(), options.end(), [](const Option& a, const Option& b) {
+        return a.distance != b.distance ? a.distance < b.distance
+                                        : (a.track != b.track ? a.track < b.track : a.candidate < b.candidate);
+      });
+      std::vector<char> track_taken(tracks.size(), 0), candidate_taken(scan.people.size(), 0);
+      for (const Option& o : options) {
+        if (track_taken[o.track] || candidate_taken[o.candidate]) continue;
+        track_taken[o.track] = candidate_taken[o.candidate] = 1;
+        Track& track = tracks[o.track];
+        track.t.push_back(scan.people[o.candidate].time_s);
+        track.c.push_back(scan.people[o.candidate].centroid);
+        track.misses = 0;
+        if (++track.found >= config.window_scans) track.active = false;
+      }
+      for (std::size_t i = 0; i < tracks.size(); ++i) {
+        // One scan without the person (hidden behind another, missed by the detector) is
+        // bridged; two in a row end the track on this side.
+        if (tracks[i].active && !track_taken[i] && ++tracks[i].misses > 1) tracks[i].active = false;
+      }
+    }
+  }
+
+  std::vector<PersonMotion> out(own.people.size());
+  for (std::size_t i = 0; i < own.people.size(); ++i) {
+    out[i].label = own.people[i].label;
+    out[i].scans = static_cast<int>(tracks[i].t.size());
+    if (out[i].scans < 2) continue;
+    fitLine(tracks[i], config.centroid_noise_m, out[i].velocity_mps, out[i].std_error_mps);
+  }
+  return out;
+}
+
+}  // namespace thermal_lidar_calibration

@@ -1,0 +1,151 @@
+// The camera time offset as a seventh parameter (issue 21): recovered with the extrinsic from
+// pairs whose camera is late or early; the paper mode and mode none ignore it; fixed uses the
+// value given; the evaluator moves points by their motion; a steady drive leaves it undecided.
+
+#include "thermal_lidar_calibration/core/calibrator.hpp"
+#include "thermal_lidar_calibration/core/person_timing.hpp"
+#include "thermal_lidar_calibration/core/timed_refinement.hpp"
+
+#include "../support/moving_pairs.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace thermal_lidar_calibration;
+using test_support::fieldsafeCamera;
+using test_support::fieldsafeTruth;
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+std::vector<CalibrationPair> movingPairs(double delay_s, bool steady = false, int n = 40) {
+  test_support::SyntheticPairsOptions o;
+  o.pairs = n;
+  o.seed = 17;
+  o.min_range_m = 5.0;
+  o.max_range_m = 16.0;
+  auto pairs = test_support::makeSyntheticPairs(fieldsafeCamera(), fieldsafeTruth(), o);
+  test_support::MotionOptions m;
+  m.delay_s = delay_s;
+  m.steady = steady;
+  test_support::addMotion(pairs, m);
+  return pairs;
+}
+
+CalibrationConfig quickConfig(TimeOffsetMode mode) {
+  CalibrationConfig c;
+  c.algorithm = Algorithm::kPlain;
+  c.evolution.population_size = 200;
+  c.evolution.max_iterations = 150;
+  c.seed = 4;
+  c.time_offset.mode = mode;
+  return c;
+}
+
+}  // namespace
+
+TEST(PersonTiming, PointsMoveWithTheirPersonToTheImagesInstant) {
+  CalibrationPair pair;
+  pair.stamp_s = 10.0;
+  pair.cloud_stamp_s = 9.98;  // the scan 20 ms before the image's stamp
+  pair.points = {{10, 0, 0}, {10, 1, 0}};
+  pair.labels = {1, 2};
+  pair.point_time_s = {0.01f, -0.02f};
+  PersonMotion walker;
+  walker.label = 2;
+  walker.velocity_mps = Eigen::Vector3d(-2, 0, 0);
+  walker.scans = 3;
+  PersonMotion unmeasured;
+  unmeasured.label = 1;
+  unmeasured.velocity_mps = Eigen::Vector3d(5, 5, 5);  // not measured (scans 1): ignored
+  attachMotion(pair, {unmeasured, walker});
+  ASSERT_TRUE(hasMeasuredMotion(pair));
+  EXPECT_EQ(pair.point_velocity[0], Eigen::Vector3f::Zero());
+  // Point 2 was captured at 9.96; the image at 10.05 (delta 50 ms): 90 ms at -2 m/s.
+  EXPECT_NEAR(leadTimeS(pair, 1), 0.04, 1e-9);
+  const auto moved = pointsAtImageTime(pair, 0.05);
+  EXPECT_NEAR(moved[1].x(), 10.0 - 2 * 0.09, 1e-5);
+  EXPECT_EQ(moved[0], pair.points[0]);
+  // The evaluator reads the same positions at its offset and at another one.
+  CalibrationPair plain = pair;
+  plain.point_velocity.clear();
+  EXPECT_EQ(pointsAtImageTime(plain, 0.05), plain.points);
+}
+
+TEST(TimeOffset, TheEvaluatorAtAnOffsetEqualsTheMovedPoints) {
+  const auto pairs = movingPairs(0.06, false, 8);
+  const LossEvaluator moving(fieldsafeCamera(), pairs, LossConfig{5.0, PixelRule::kBilinear, 0.0});
+  ASSERT_TRUE(moving.hasMotion());
+  for (const double delta : {-0.04, 0.0, 0.06}) {
+    const LossEvaluator shifted(fieldsafeCamera(), test_support::pairsAtOffset(pairs, delta),
+                                LossConfig{5.0, PixelRule::kBilinear});
+    EXPECT_NEAR(moving.withTimeOffset(delta).loss(fieldsafeTruth()), shifted.loss(fieldsafeTruth()), 1e-5) << delta;
+  }
+  // Without an offset the points stay where they were captured.
+  const LossEvaluator still(fieldsafeCamera(), pairs, LossConfig{5.0, PixelRule::kBilinear});
+  EXPECT_FALSE(still.hasMotion());
+  EXPECT_THROW(still.withTimeOffset(0.01), std::logic_error);
+  // At the true delay the truth fits better than at zero.
+  EXPECT_LT(moving.withTimeOffset(0.06).loss(fieldsafeTruth()), moving.loss(fieldsafeTruth()) - 0.2);
+}
+
+TEST(TimeOffset, ALateCameraIsRecoveredWithTheExtrinsic) {
+  for (const double delay : {0.06, -0.04}) {
+    const auto pairs = movingPairs(delay);
+    const CalibrationResult r = calibrate(fieldsafeCamera(), pairs, quickConfig(TimeOffsetMode::kEstimate));
+    EXPECT_EQ(r.time_offset_mode, TimeOffsetMode::kEstimate);
+    EXPECT_NEAR(r.time_offset_s, delay, 0.003) << delay;
+    EXPECT_LT(rotationErrorRad(r.extrinsic, fieldsafeTruth()), 0.1 * kDeg) << delay;
+    EXPECT_LT(translationErrorM(r.extrinsic, fieldsafeTruth()), 0.01) << delay;
+    EXPECT_EQ(r.pairs_with_motion, pairs.size());
+    EXPECT_FALSE(r.time_offset_profile_s.empty());
+    EXPECT_LT(r.loss, r.loss_without_timing);
+  }
+}
+
+TEST(TimeOffset, IgnoringTheDelayCostsCentimetresAndFixedUsesTheGivenValue) {
+  const auto pairs = movingPairs(0.06);
+  const CalibrationResult none = calibrate(fieldsafeCamera(), pairs, quickConfig(TimeOffsetMode::kNone));
+  EXPECT_EQ(none.time_offset_mode, TimeOffsetMode::kNone);
+  EXPECT_EQ(none.time_offset_s, 0.0);
+  EXPECT_GT(translationErrorM(none.extrinsic, fieldsafeTruth()), 0.03);
+  CalibrationConfig fixed = quickConfig(TimeOffsetMode::kFixed);
+  fixed.time_offset.offset_s = 0.06;
+  const CalibrationResult known = calibrate(fieldsafeCamera(), pairs, fixed);
+  EXPECT_EQ(known.time_offset_mode, TimeOffsetMode::kFixed);
+  EXPECT_EQ(known.time_offset_s, 0.06);
+  EXPECT_TRUE(known.time_offset_profile_s.empty());
+  EXPECT_LT(translationErrorM(known.extrinsic, fieldsafeTruth()), 0.01);
+}
+
+TEST(TimeOffset, ThePaperModeAndPairsWithoutMotionIgnoreTiming) {
+  auto pairs = movingPairs(0.06, false, 30);
+  CalibrationConfig paper = quickConfig(TimeOffsetMode::kEstimate);
+  paper.refine.mode = RefineMode::kNone;
+  CalibrationConfig none = paper;
+  none.time_offset.mode = TimeOffsetMode::kNone;
+  const CalibrationResult a = calibrate(fieldsafeCamera(), pairs, paper);
+  const CalibrationResult b = calibrate(fieldsafeCamera(), pairs, none);
+  EXPECT_EQ(a.time_offset_mode, TimeOffsetMode::kNone);
+  EXPECT_NE(a.time_offset_note.find("paper"), std::string::npos) << a.time_offset_note;
+  EXPECT_EQ(a.extrinsic.rotation_vector, b.extrinsic.rotation_vector);  // exactly the same run
+  EXPECT_EQ(a.extrinsic.translation, b.extrinsic.translation);
+  for (auto& p : pairs) p.point_velocity.clear();
+  const CalibrationResult c = calibrate(fieldsafeCamera(), pairs, quickConfig(TimeOffsetMode::kEstimate));
+  EXPECT_EQ(c.time_offset_mode, TimeOffsetMode::kNone);
+  EXPECT_NE(c.time_offset_note.find("motion"), std::string::npos) << c.time_offset_note;
+}
+
+TEST(TimeOffset, TheJointRefinementStaysWithinTheRange) {
+  const auto pairs = movingPairs(0.06, false, 12);
+  const LossEvaluator loss(fieldsafeCamera(), pairs, LossConfig{5.0, PixelRule::kBilinear, 0.0});
+  TimeOffsetConfig timing;
+  timing.max_s = 0.03;  // the true 60 ms lies outside
+  std::vector<std::size_t> all(pairs.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  const TimedRefineOutcome r = TimedRefinement(loss, RefineConfig{}, timing, 1).run(fieldsafeTruth(), 0.0, all);
+  EXPECT_LE(std::abs(r.time_offset_s), 0.03 + 1e-12);
+  EXPECT_GT(r.time_offset_s, 0.02);  // pushed to the edge nearest the truth
+}
