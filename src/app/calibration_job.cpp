@@ -13,14 +13,15 @@ namespace thermal_lidar_calibration {
 namespace {
 
 // How far to trust the fit: bootstrap intervals, coverage, verdict, the reference's standing.
-// The bootstrap draws from the calibration's seed and uses its threads, so one seed gives one
-// answer in both front ends.
+// The bootstrap draws from the calibration's seed, uses its threads and its time offset range,
+// so one seed gives one answer in both front ends.
 void assess(const CalibrationJobRequest& request, const JobCallback& callback,
             CalibrationJobOutcome& out) {
   const CalibrationConfig& calibration = request.parameters.calibration;
   QualityConfig config = request.parameters.quality;
   config.uncertainty.seed = calibration.seed;
   config.uncertainty.num_threads = calibration.num_threads;
+  config.time_offset = calibration.time_offset;
   std::optional<Extrinsic> reference;
   if (request.reference) reference = request.reference->extrinsic;
   try {

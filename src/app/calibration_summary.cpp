@@ -1,6 +1,7 @@
 #include "thermal_lidar_calibration/app/calibration_summary.hpp"
 #include "thermal_lidar_calibration/app/quality_output.hpp"
 #include "thermal_lidar_calibration/app/static_transform_command.hpp"
+#include "thermal_lidar_calibration/app/timing_text.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -46,6 +47,11 @@ std::string formatCalibrationSummary(const SummaryInput& in) {
   s << "  loss             " << fmt("%.4f px (bilinear %.4f; before refinement %.4f)", r.loss,
                                     r.loss_bilinear, r.evolution_loss)
     << "\n";
+  s << "  time offset      " << timeOffsetText(r, in.quality ? in.quality->uncertainty : std::nullopt);
+  if (r.time_offset_mode != TimeOffsetMode::kNone) {
+    s << fmt("; loss %.4f px with it, %.4f px without", r.loss, r.loss_without_timing, 0);
+  }
+  s << "\n";
   if (in.truth) {
     s << "  truth            "
       << fmt("rotation error %.4f deg, translation error %.3f cm, ",

@@ -66,6 +66,48 @@ void addQualityRows(ParameterTable<CoreParameters>& t) {
                "fits carried by mismatched pairs 2-25 px)");
 }
 
+// Issue 21: the camera's time offset against the LiDAR, and the people's motion that measures it.
+void addTimingRows(ParameterTable<CoreParameters>& t) {
+  auto timing = t.group<TimeOffsetConfig>(
+      [](CoreParameters& p) -> TimeOffsetConfig& { return p.calibration.time_offset; });
+  auto motion = t.group<MotionConfig>([](CoreParameters& p) -> MotionConfig& { return p.motion; });
+  auto verdict = t.group<VerdictConfig>([](CoreParameters& p) -> VerdictConfig& { return p.quality.verdict; });
+  t.section("Sensor timing (beyond the paper; issue #21)");
+  timing.choice("time_offset_mode", &TimeOffsetConfig::mode,
+                {{"estimate", TimeOffsetMode::kEstimate}, {"fixed", TimeOffsetMode::kFixed}, {"none", TimeOffsetMode::kNone}},
+                "must be 'estimate', 'fixed' or 'none'",
+                "the image stamped t was captured at t + time_offset_s on the LiDAR's clock: estimate it with "
+                "the extrinsic, use time_offset_s as known, or ignore timing (refine: none always ignores it)");
+  timing.real("time_offset_s", &TimeOffsetConfig::offset_s, closedRange(-2, 2), "s",
+              "fixed: the known offset; estimate: where the search starts (positive: the image shows the world "
+              "after its stamp)");
+  timing.real("time_offset_max_s", &TimeOffsetConfig::max_s, aboveRange(0, 2), "s",
+              "estimate: the offset is searched within +- this", "at least |time_offset_s|");
+  timing.real("time_offset_coarse_step_s", &TimeOffsetConfig::coarse_step_s, aboveRange(0, 1), "s",
+              "grid step of the coarse search before the joint refinement", "at most time_offset_max_s");
+  motion.integer("motion_window_scans", &MotionConfig::window_scans, {1, 10}, "",
+                 "scans before and after a kept pair from which each person's velocity is fitted (a kept pair "
+                 "waits for the later ones)");
+  motion.real("motion_max_speed_mps", &MotionConfig::max_speed_mps, aboveRange(0, 100), "m/s",
+              "fastest motion of a person relative to the LiDAR searched for in the next scan (vehicle and "
+              "walk together)");
+  motion.real("motion_max_gap_s", &MotionConfig::max_gap_s, aboveRange(0, 5), "s",
+              "scans further apart than this do not continue a person's track");
+  verdict.real("quality_good_time_offset_ms", &VerdictConfig::good_time_offset_ms, closedRange(0, 1e4), "ms",
+               "good: the estimated offset's 95 % half-width at most this");
+  verdict.real("quality_usable_time_offset_ms", &VerdictConfig::usable_time_offset_ms, closedRange(0, 1e4), "ms",
+               "usable: at most this (and the drive's resolution too)", "at least quality_good_time_offset_ms");
+  verdict.real("quality_good_time_resolution_ms", &VerdictConfig::good_time_resolution_ms, closedRange(0, 1e4),
+               "ms",
+               "good: the drive's motion resolves the offset to this with the pose free (1 sigma; straight "
+               "steady driving past standing people resolves nothing)");
+  verdict.real("quality_timing_probe_ms", &VerdictConfig::timing_probe_ms, closedRange(0, 1e4), "ms",
+               "offset not estimated: a joint refinement from the fit that moves it this far and lowers the loss "
+               "by quality_timing_min_gain names timing in the verdict");
+  verdict.real("quality_timing_min_gain", &VerdictConfig::timing_min_gain, closedRange(0, 1), "",
+               "the loss reduction (fraction) that goes with quality_timing_probe_ms");
+}
+
 // Issue 9: the drift watch's window and what counts as a change (core/drift_config.hpp says why
 // each default is what it is).
 void addDriftRows(ParameterTable<CoreParameters>& t) {
@@ -213,6 +255,7 @@ ParameterTable<CoreParameters> makeCoreParameterTable() {
               "node: pairs to collect before optimizing",
               "calibrate_bag uses every pair in the bag");
   addQualityRows(t);
+  addTimingRows(t);
   addDriftRows(t);
   return t;
 }
@@ -231,6 +274,7 @@ CoreParameters loadCoreParameters(const ParameterSource& source) {
   p.calibration.validate();
   p.gate.validate();
   p.quality.validate();
+  p.motion.validate();
   p.drift.validate();
   return p;
 }

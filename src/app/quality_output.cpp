@@ -3,6 +3,7 @@
 #include "thermal_lidar_calibration/app/result_file.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace thermal_lidar_calibration {
@@ -32,6 +33,30 @@ void emitUncertainty(YAML::Emitter& out, const Uncertainty& u) {
   out << YAML::Key << "block_pairs" << YAML::Value << u.block_pairs;
   out << YAML::Key << "pairs" << YAML::Value << u.pairs;
   out << YAML::Key << "run_time_s" << YAML::Value << u.seconds;
+  if (u.timed) {
+    out << YAML::Key << "time_offset_ms" << YAML::Value << u.time_offset_ms;
+    out << YAML::Key << "time_offset_interval_ms" << YAML::Value << YAML::Flow << YAML::BeginSeq
+        << u.time_offset_lower_ms << u.time_offset_upper_ms << YAML::EndSeq;
+    emit3(out, "time_translation_correlation", u.time_translation_correlation);
+  }
+  out << YAML::EndMap;
+}
+
+void emitTiming(YAML::Emitter& out, const TimingAssessment& t) {
+  out << YAML::Key << "timing" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "pairs_with_motion" << YAML::Value << t.pairs_with_motion;
+  out << YAML::Key << "mean_image_speed_px_s" << YAML::Value << t.mean_image_speed_px_s;
+  if (std::isfinite(t.resolution_ms)) {
+    out << YAML::Key << "resolution_ms" << YAML::Value << t.resolution_ms;
+  } else {
+    out << YAML::Key << "resolution_ms" << YAML::Value << ".inf";
+  }
+  out << YAML::Key << "speed_loss_correlation" << YAML::Value << t.speed_loss_correlation;
+  if (t.probe_offset_s) {
+    out << YAML::Key << "probe_time_offset_s" << YAML::Value << *t.probe_offset_s;
+    out << YAML::Key << "probe_loss" << YAML::Value << t.probe_loss;
+    out << YAML::Key << "fit_loss" << YAML::Value << t.fit_loss;
+  }
   out << YAML::EndMap;
 }
 
@@ -58,6 +83,7 @@ void emitQuality(YAML::Emitter& out, const QualityAssessment& q) {
   }
   out << YAML::Key << "distinct_positions" << YAML::Value << c.distinct_positions;
   out << YAML::EndMap;
+  if (q.timing) emitTiming(out, *q.timing);
   out << YAML::Key << "verdict" << YAML::Value << toString(q.verdict.verdict);
   out << YAML::Key << "verdict_reasons" << YAML::Value << YAML::BeginSeq;
   for (const auto& reason : q.verdict.reasons) out << reason;
@@ -98,6 +124,11 @@ std::string formatQualitySummary(const QualityAssessment& q) {
     s += format3("                   rotation +- [%.3f, %.3f, %.3f] deg about camera x, y, z\n", u.rotation_deg);
     s += format3("                   translation +- [%.2f, %.2f, %.2f] cm along camera x, y, z\n",
                  u.translation_cm);
+    if (u.timed) {
+      char timing[96];
+      std::snprintf(timing, sizeof(timing), "                   time offset +- %.1f ms\n", u.time_offset_ms);
+      s += timing;
+    }
   }
   const Coverage& c = q.coverage;
   char coverage[256];

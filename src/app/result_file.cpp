@@ -98,6 +98,26 @@ void writeResultFile(const std::string& path, const CalibrationResult& result,
   out << YAML::Key << "pairs_collected" << YAML::Value << result.pairs_collected;
   out << YAML::Key << "loss_bilinear" << YAML::Value << result.loss_bilinear;
   out << YAML::Key << "stopped_early" << YAML::Value << result.stopped;
+  // Issue 21: the camera's time offset the extrinsic goes with (0 and none: timing ignored).
+  out << YAML::Key << "time_offset_s" << YAML::Value << result.time_offset_s;
+  out << YAML::Key << "time_offset_mode" << YAML::Value << toString(result.time_offset_mode);
+  if (!result.time_offset_note.empty()) {
+    out << YAML::Key << "time_offset_note" << YAML::Value << result.time_offset_note;
+  }
+  out << YAML::Key << "loss_without_timing" << YAML::Value << result.loss_without_timing;
+  out << YAML::Key << "pairs_with_motion" << YAML::Value << result.pairs_with_motion;
+  if (!result.time_offset_profile_s.empty()) {
+    out << YAML::Key << "time_offset_profile" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "offsets_s" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+    for (std::size_t i = 0; i < result.time_offset_profile_s.size(); ++i) {
+      if (std::isfinite(result.time_offset_profile_loss[i])) out << result.time_offset_profile_s[i];
+    }
+    out << YAML::EndSeq << YAML::Key << "losses_px" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+    for (double loss : result.time_offset_profile_loss) {
+      if (std::isfinite(loss)) out << loss;
+    }
+    out << YAML::EndSeq << YAML::EndMap;
+  }
 
   out << YAML::Key << "evolution" << YAML::Value << YAML::BeginMap;
   emitExtrinsic(out, result.evolution_extrinsic);

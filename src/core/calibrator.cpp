@@ -7,9 +7,11 @@
 #include "thermal_lidar_calibration/core/person_timing.hpp"
 #include "thermal_lidar_calibration/core/time_offset_search.hpp"
 #include "thermal_lidar_calibration/core/timed_refinement.hpp"
+#include "thermal_lidar_calibration/core/timing_resolution.hpp"
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <iterator>
 #include <numeric>
 #include <stdexcept>
@@ -117,7 +119,24 @@ std::vector<std::size_t> evolve(const LossEvaluator& nearest, const CalibrationC
   return used;
 }
 
-// Issue 21, mode estimate: the coarse search over the time offset from the evolution's pose.
+// Issue 21, mode estimate: only when the pairs resolve the offset (else it stays at its start,
+// as if fixed, and the verdict says why); then the coarse search from the evolution's pose.
+bool resolvable(const LossEvaluator& nearest, const std::vector<CalibrationPair>& pairs, const CalibrationConfig& config,
+                const std::vector<std::size_t>& used, CalibrationResult& result) {
+  const TimingResolution r = timingResolution(nearest.camera(), pairs, used, result.extrinsic, result.time_offset_s,
+                                              result.evolution_loss);
+  result.time_resolution_ms = r.resolution_ms;
+  if (r.resolution_ms <= config.time_offset.max_resolution_ms) return true;
+  char note[320];
+  std::snprintf(note, sizeof(note),
+                "not estimated: these pairs resolve the time offset only to +-%.3g ms "
+                "(time_offset_max_resolution_ms %.3g), so it stays at %+.1f ms",
+                r.resolution_ms, config.time_offset.max_resolution_ms, 1000.0 * result.time_offset_s);
+  result.time_offset_note = note;
+  result.time_offset_mode = TimeOffsetMode::kFixed;
+  return false;
+}
+
 void searchOffset(const LossEvaluator& bilinear, const CalibrationConfig& config,
                   const std::vector<std::size_t>& used, Reporter& report, CalibrationResult& result) {
   report.evaluations_before_stage = result.evaluations;
@@ -136,9 +155,9 @@ void searchOffset(const LossEvaluator& bilinear, const CalibrationConfig& config
 
 // Beyond the paper: the local refinement, alternating with the re-selection of the inliers.
 // Returns the pairs used.
-std::vector<std::size_t> refine(const LossEvaluator& nearest, const CalibrationConfig& config,
-                                std::vector<std::size_t> used, Reporter& report, CalibrationResult& result) {
-  const bool estimate = result.time_offset_mode == TimeOffsetMode::kEstimate;
+std::vector<std::size_t> refine(const LossEvaluator& nearest, const std::vector<CalibrationPair>& pairs,
+                                const CalibrationConfig& config, std::vector<std::size_t> used, Reporter& report,
+                                CalibrationResult& result) {
   const LossEvaluator bilinear = nearest.withPixelRule(PixelRule::kBilinear);
   // Algorithm 2 can keep a mismatched pair (equal counts, different people) when neither of
   // its subset fits is accepted; one such pair pulls the optimum by decimetres. So the
@@ -154,6 +173,8 @@ std::vector<std::size_t> refine(const LossEvaluator& nearest, const CalibrationC
                           std::back_inserter(kept));
     if (!kept.empty()) used = kept;
   }
+  const bool estimate = result.time_offset_mode == TimeOffsetMode::kEstimate &&
+                        resolvable(nearest, pairs, config, used, result);
   if (estimate) searchOffset(bilinear, config, used, report, result);
   constexpr int kMaxInlierRounds = 5;
   for (int round = 1; round <= kMaxInlierRounds && !result.stopped; ++round) {
@@ -202,6 +223,7 @@ CalibrationResult calibrate(const CameraModel& camera, const std::vector<Calibra
   result.pairs_collected = pairs.size();
   const TimingPlan timing = planTiming(pairs, config);
   result.time_offset_mode = timing.mode;
+  result.time_offset_asked = config.time_offset.mode;
   result.time_offset_s = timing.start_s;
   result.time_offset_note = timing.note;
   result.pairs_with_motion = timing.pairs_with_motion;
@@ -213,7 +235,7 @@ CalibrationResult calibrate(const CameraModel& camera, const std::vector<Calibra
 
   std::vector<std::size_t> used = evolve(nearest, config, rng, report, result);
   if (config.refine.mode == RefineMode::kLocal && !result.stopped) {
-    used = refine(nearest, config, std::move(used), report, result);
+    used = refine(nearest, pairs, config, std::move(used), report, result);
   }
 
   // The search explores rotation vectors up to |r| = sqrt(3) * 3.5 rad; report the same

@@ -1,6 +1,7 @@
 #include "thermal_lidar_calibration/core/dataset_builder.hpp"
 
 #include "thermal_lidar_calibration/core/person_counter.hpp"
+#include "thermal_lidar_calibration/core/person_timing.hpp"
 
 #include <algorithm>
 #include <exception>
@@ -53,9 +54,10 @@ void checkFrame(const Frame& frame, const CameraModel& camera) {
 
 }  // namespace
 
-DatasetBuilder::DatasetBuilder(CameraModel camera, GateConfig config)
-    : camera_(std::move(camera)), gate_(config) {
+DatasetBuilder::DatasetBuilder(CameraModel camera, GateConfig config, std::optional<MotionConfig> motion)
+    : camera_(std::move(camera)), gate_(config), motion_(motion) {
   camera_.validate();
+  if (motion_) motion_->validate();
 }
 
 OfferOutcome DatasetBuilder::offer(const std::function<Frame()>& decode) {
@@ -113,12 +115,80 @@ OfferOutcome DatasetBuilder::admit(const std::function<Frame()>& decode, bool st
   pair.points = std::move(frame.points);
   pair.labels = std::move(frame.labels);
   pair.people = outcome.mask_people;
+  pair.cloud_stamp_s = frame.cloud_stamp_s;
+  pair.point_time_s = std::move(frame.point_time_s);
+  pair.point_velocity = std::move(frame.point_velocity);
+  if (motion_ && pair.point_velocity.empty()) {
+    pending_.push_back(std::move(pair));
+    finishPending(false);
+  } else {
+    keep(std::move(pair));
+  }
+  return outcome;
+}
+
+void DatasetBuilder::keep(CalibrationPair pair) {
   pairs_.push_back(std::move(pair));
   if (pairs_.size() >= kLockPairs) {
     ids_locked_ = true;
     other_ids_.clear();
   }
-  return outcome;
+}
+
+void DatasetBuilder::observeScan(ScanPeople scan) {
+  if (!motion_) return;
+  const auto later = std::upper_bound(scans_.begin(), scans_.end(), scan.stamp_s,
+                                      [](double t, const ScanPeople& s) { return t < s.stamp_s; });
+  if (later != scans_.begin() && std::prev(later)->stamp_s == scan.stamp_s) return;  // seen
+  scans_.insert(later, std::move(scan));
+  finishPending(false);
+  // Keep what a waiting pair or the next one can still need: the window before the oldest
+  // waiting pair (or the newest scan), with room for holes.
+  const double keep_from = (pending_.empty() ? scans_.back().stamp_s : pending_.front().cloud_stamp_s) -
+                           (motion_->window_scans + 1) * motion_->max_gap_s;
+  std::size_t drop = 0;
+  while (drop < scans_.size() && scans_[drop].stamp_s < keep_from) ++drop;
+  scans_.erase(scans_.begin(), scans_.begin() + static_cast<std::ptrdiff_t>(drop));
+}
+
+// A waiting pair is ready when window_scans scans after its own have arrived, or when the scans
+// have moved on so far that none still to come could be used.
+void DatasetBuilder::finishPending(bool all) {
+  while (!pending_.empty()) {
+    CalibrationPair& pair = pending_.front();
+    if (!all) {
+      int after = 0;
+      for (auto it = scans_.rbegin(); it != scans_.rend() && it->stamp_s > pair.cloud_stamp_s; ++it) ++after;
+      const double newest = scans_.empty() ? pair.cloud_stamp_s : scans_.back().stamp_s;
+      const bool waited_enough = newest - pair.cloud_stamp_s > motion_->window_scans * motion_->max_gap_s;
+      if (after < motion_->window_scans && !waited_enough) return;
+    }
+    measureMotion(pair);
+    keep(std::move(pair));
+    pending_.pop_front();
+  }
+}
+
+void DatasetBuilder::measureMotion(CalibrationPair& pair) const {
+  // Its own scan, as observed; a pair whose scan was never observed on its own brings it along.
+  std::vector<ScanPeople> scans = scans_;
+  auto own = std::find_if(scans.begin(), scans.end(),
+                          [&](const ScanPeople& s) { return s.stamp_s == pair.cloud_stamp_s; });
+  if (own == scans.end()) {
+    const auto later = std::upper_bound(scans.begin(), scans.end(), pair.cloud_stamp_s,
+                                        [](double t, const ScanPeople& s) { return t < s.stamp_s; });
+    own = scans.insert(later, summariseScan(pair.cloud_stamp_s, pair.points, pair.labels, pair.point_time_s));
+  }
+  attachMotion(pair, estimateMotion(scans, static_cast<std::size_t>(own - scans.begin()), *motion_));
+}
+
+void DatasetBuilder::flushPending() {
+  if (motion_) finishPending(true);
+}
+
+std::vector<PersonMotion> DatasetBuilder::latestMotion() const {
+  if (!motion_ || scans_.empty()) return {};
+  return estimateMotion(scans_, scans_.size() - 1, *motion_);
 }
 
 void DatasetBuilder::checkFrameIds(const Frame& frame) {
@@ -138,8 +208,9 @@ void DatasetBuilder::checkFrameIds(const Frame& frame) {
     if (++support > tentative_support_) {
       // These ids have been seen in more valid frames than the tentative ones: the tentative
       // ids came from a few stray frames. Their pairs (fewer than kLockPairs) go.
-      pairs_dropped_for_ids_ += pairs_.size();
+      pairs_dropped_for_ids_ += pairs_.size() + pending_.size();
       pairs_.clear();
+      pending_.clear();
       camera_frame_ = ids.first;
       lidar_frame_ = ids.second;
       tentative_support_ = support;
@@ -170,6 +241,8 @@ std::vector<CalibrationPair> DatasetBuilder::takePairs() {
 
 void DatasetBuilder::reset() {
   pairs_.clear();
+  pending_.clear();
+  scans_.clear();
   gate_.reset();
   camera_frame_.clear();
   lidar_frame_.clear();

@@ -82,19 +82,23 @@ void judgeTiming(const TimingAssessment& t, const VerdictConfig& c, std::vector<
   const std::string what_to_do =
       ": vary the speed (stop and start), turn while people are in view, or have people walk "
       "across the view; or measure the offset and set time_offset_mode fixed with time_offset_s";
-  if (t.mode == TimeOffsetMode::kEstimate) {
-    if (!(t.resolution_ms <= c.good_time_resolution_ms)) {
-      const bool hopeless = !(t.resolution_ms <= c.usable_time_offset_ms);
-      out.push_back({hopeless ? Verdict::kCollectMore : Verdict::kUsable,
-                     (std::isfinite(t.resolution_ms)
-                          ? format("timing: this drive resolves the camera's time offset only to +-%.3g ms "
-                                   "(good <= %.3g)",
-                                   t.resolution_ms, c.good_time_resolution_ms)
-                          : std::string("timing: this drive cannot tell the camera's time offset at all")) +
-                         ", so a late camera and one mounted further along the direction of travel look "
-                         "alike (the estimated offset and translation along the travel are uncertain)" +
-                         what_to_do});
-    }
+  const bool estimated = t.mode == TimeOffsetMode::kEstimate;
+  if (t.asked == TimeOffsetMode::kEstimate && !(t.resolution_ms <= c.good_time_resolution_ms)) {
+    const bool hopeless = !(t.resolution_ms <= c.usable_time_offset_ms);
+    const std::string resolves =
+        std::isfinite(t.resolution_ms)
+            ? format("timing: this drive resolves the camera's time offset only to +-%.3g ms (good <= %.3g)",
+                     t.resolution_ms, c.good_time_resolution_ms)
+            : std::string("timing: this drive cannot tell the camera's time offset at all");
+    const std::string consequence =
+        estimated ? ", so a late camera and one mounted further along the direction of travel look alike (the "
+                    "estimated offset and the translation along the travel are uncertain)"
+                  : format(", so it was not estimated (kept at %+.1f ms): if the stamps are off, the result is off "
+                           "along the direction of travel",
+                           1000.0 * t.time_offset_s);
+    out.push_back({hopeless ? Verdict::kCollectMore : Verdict::kUsable, resolves + consequence + what_to_do});
+  }
+  if (estimated) {
     if (t.halfwidth_ms && *t.halfwidth_ms > c.good_time_offset_ms) {
       out.push_back({*t.halfwidth_ms > c.usable_time_offset_ms ? Verdict::kCollectMore : Verdict::kUsable,
                      format("timing: the time offset %.1f ms is uncertain by +-%.1f ms (good <= %.3g)",

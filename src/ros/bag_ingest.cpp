@@ -193,6 +193,15 @@ BagIngestStats ingestBag(rosbag::Bag& bag, const BagTopics& topics, const CorePa
                outcome.error.empty() ? "undecodable frame" : outcome.error);
   };
   FrameSynchronizer sync(params.sync_queue_size, params.sync_slop_s, on_frame);
+  // Every clusters message, kept frame or not, is a scan the people's motion is measured from
+  // (issue 21). One that cannot be decoded is reported when its frame is.
+  const auto observe = [&](const sensor_msgs::PointCloud2& clusters, const std::string& topic) {
+    if (!builder.tracksMotion()) return;
+    try {
+      builder.observeScan(decodeScanPeople(clusters, topic));
+    } catch (const std::invalid_argument&) {
+    }
+  };
 
   // Messages whose stamps ApproximateTime cannot handle are refused by the synchronizer: say so
   // for the first few.
@@ -212,7 +221,9 @@ BagIngestStats ingestBag(rosbag::Bag& bag, const BagTopics& topics, const CorePa
       if (m.getTopic() == topics.points) {
         const auto cloud = m.instantiate<sensor_msgs::PointCloud2>();
         if (!cloud) return;
-        note(m.getTopic(), sync.addClusters(detectors->detect(*cloud, m.getTopic()).clusters));
+        const sensor_msgs::PointCloud2::ConstPtr clusters = detectors->detect(*cloud, m.getTopic()).clusters;
+        if (clusters) observe(*clusters, topics.clusters);
+        note(m.getTopic(), sync.addClusters(clusters));
       } else {
         const auto image = m.instantiate<sensor_msgs::Image>();
         if (!image) return;
@@ -234,7 +245,9 @@ BagIngestStats ingestBag(rosbag::Bag& bag, const BagTopics& topics, const CorePa
         if (topics.detect) {
           add_detected(m);
         } else if (m.getTopic() == topics.clusters) {
-          note(m.getTopic(), sync.addClusters(m.instantiate<sensor_msgs::PointCloud2>()));
+          const auto clusters = m.instantiate<sensor_msgs::PointCloud2>();
+          if (clusters) observe(*clusters, m.getTopic());
+          note(m.getTopic(), sync.addClusters(clusters));
         } else if (m.getTopic() == topics.image) {
           note(m.getTopic(), sync.addImage(m.instantiate<sensor_msgs::Image>()));
         } else {
@@ -257,7 +270,10 @@ BagIngestStats ingestBag(rosbag::Bag& bag, const BagTopics& topics, const CorePa
     stats.damage = "the bag could not be read past message " +
                    std::to_string(stats.messages_read) + " (" + e.what() + ")";
   }
-  if (!stats.interrupted) sync.flush();  // the last frame of the bag counts too
+  if (!stats.interrupted) {
+    sync.flush();  // the last frame of the bag counts too
+    builder.flushPending();  // and the pairs waiting for scans that will not come
+  }
   return stats;
 }
 

@@ -303,6 +303,11 @@ std::string tfFrameId(const std::string& frame_id) {
   return first == std::string::npos ? "" : frame_id.substr(first);
 }
 
+ScanPeople decodeScanPeople(const sensor_msgs::PointCloud2& msg, const std::string& topic) {
+  const DecodedClusters decoded = decodeClusters(msg, topic);
+  return summariseScan(msg.header.stamp.toSec(), decoded.points, decoded.labels);
+}
+
 Frame decodeFrame(const sensor_msgs::Image& image, const sensor_msgs::Image& mask,
                   const sensor_msgs::PointCloud2& clusters, const std::string& image_topic,
                   const std::string& mask_topic, const std::string& clusters_topic) {
@@ -311,6 +316,7 @@ Frame decodeFrame(const sensor_msgs::Image& image, const sensor_msgs::Image& mas
   frame.camera_frame =
       tfFrameId(image.header.frame_id.empty() ? mask.header.frame_id : image.header.frame_id);
   frame.lidar_frame = tfFrameId(clusters.header.frame_id);
+  frame.cloud_stamp_s = clusters.header.stamp.toSec();
   frame.image = decodeMonoImage(image, image_topic);
   frame.mask = decodeMonoImage(mask, mask_topic);
   if (frame.image.size() != frame.mask.size()) {

@@ -8,6 +8,7 @@
 #include "thermal_lidar_calibration/app/writable_path.hpp"
 #include "thermal_lidar_calibration/app/calibration_job.hpp"
 #include "thermal_lidar_calibration/app/calibration_summary.hpp"
+#include "thermal_lidar_calibration/app/timing_text.hpp"
 #include "thermal_lidar_calibration/app/drift_timeline.hpp"
 #include "thermal_lidar_calibration/app/camera_info_file.hpp"
 #include "thermal_lidar_calibration/app/progress_line.hpp"
@@ -240,7 +241,7 @@ BagPairs readPairs(const CalibrateBagOptions& options, CoreParameters& params, P
     if (!window.empty()) warn(window);
   }
 
-  read.builder = std::make_unique<DatasetBuilder>(read.camera, params.gate);
+  read.builder = std::make_unique<DatasetBuilder>(read.camera, params.gate, params.motion);
   DatasetBuilder& builder = *read.builder;
   IngestCallbacks callbacks;
   callbacks.warn = warn;
@@ -312,6 +313,8 @@ CalibrationJobOutcome calibratePairs(const CalibrateBagOptions& options, const C
     throw std::invalid_argument("cannot calibrate on " + std::to_string(pairs) + " pairs: " + outcome.error);
   }
   if (!outcome.quality_error.empty()) warn(outcome.quality_error);
+  const std::string late = timeOffsetWarning(*outcome.result);
+  if (!late.empty()) warn(late);
   if (!outcome.result_file_written) throw std::runtime_error(outcome.result_file_error);
   if (!options.report.empty()) {
     if (!outcome.report_error.empty()) throw std::runtime_error(outcome.report_error);

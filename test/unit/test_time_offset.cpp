@@ -95,7 +95,8 @@ TEST(TimeOffset, ALateCameraIsRecoveredWithTheExtrinsic) {
   for (const double delay : {0.06, -0.04}) {
     const auto pairs = movingPairs(delay);
     const CalibrationResult r = calibrate(fieldsafeCamera(), pairs, quickConfig(TimeOffsetMode::kEstimate));
-    EXPECT_EQ(r.time_offset_mode, TimeOffsetMode::kEstimate);
+    EXPECT_EQ(r.time_offset_mode, TimeOffsetMode::kEstimate) << r.time_offset_note;
+    EXPECT_LT(r.time_resolution_ms, 5.0);
     EXPECT_NEAR(r.time_offset_s, delay, 0.003) << delay;
     EXPECT_LT(rotationErrorRad(r.extrinsic, fieldsafeTruth()), 0.1 * kDeg) << delay;
     EXPECT_LT(translationErrorM(r.extrinsic, fieldsafeTruth()), 0.01) << delay;
@@ -136,6 +137,20 @@ TEST(TimeOffset, ThePaperModeAndPairsWithoutMotionIgnoreTiming) {
   const CalibrationResult c = calibrate(fieldsafeCamera(), pairs, quickConfig(TimeOffsetMode::kEstimate));
   EXPECT_EQ(c.time_offset_mode, TimeOffsetMode::kNone);
   EXPECT_NE(c.time_offset_note.find("motion"), std::string::npos) << c.time_offset_note;
+}
+
+TEST(TimeOffset, ASteadyDriveKeepsTheStartingOffsetAndSaysWhy) {
+  // Straight at one speed past standing people: a late camera is a camera mounted further
+  // forward, so estimating would only trade translation for nothing.
+  const auto pairs = movingPairs(0.0, true);
+  const CalibrationResult r = calibrate(fieldsafeCamera(), pairs, quickConfig(TimeOffsetMode::kEstimate));
+  EXPECT_EQ(r.time_offset_asked, TimeOffsetMode::kEstimate);
+  EXPECT_EQ(r.time_offset_mode, TimeOffsetMode::kFixed);
+  EXPECT_EQ(r.time_offset_s, 0.0);
+  EXPECT_GT(r.time_resolution_ms, 100.0);
+  EXPECT_NE(r.time_offset_note.find("not estimated"), std::string::npos) << r.time_offset_note;
+  EXPECT_LT(translationErrorM(r.extrinsic, fieldsafeTruth()), 0.01);
+  EXPECT_TRUE(r.time_offset_profile_s.empty());
 }
 
 TEST(TimeOffset, TheJointRefinementStaysWithinTheRange) {

@@ -39,6 +39,7 @@ CalibrationResult fitAt(const std::vector<CalibrationPair>& pairs, double offset
   r.extrinsic = fieldsafeTruth();
   r.time_offset_s = offset_s;
   r.time_offset_mode = mode;
+  r.time_offset_asked = mode;
   r.inliers.assign(pairs.size(), true);
   const LossEvaluator nearest(fieldsafeCamera(), pairs,
                               LossConfig{5.0, PixelRule::kNearest,
@@ -81,6 +82,16 @@ TEST(TimingCheck, AVariedDriveResolvesTheOffsetAndASteadyOneCannot) {
   EXPECT_EQ(v.reasons.front().rfind("timing", 0), 0u) << v.reasons.front();
   EXPECT_TRUE(mentions(v, "vary the speed"));
   EXPECT_FALSE(mentions(judgeQuality(coverage, std::nullopt, VerdictConfig{}, 0.1, t), "timing"));
+
+  // Asked to estimate but left at its start (the fit found the drive could not resolve it): the
+  // verdict says it was not estimated, and why.
+  CalibrationResult kept = fitAt(steady, 0.0, TimeOffsetMode::kFixed);
+  kept.time_offset_asked = TimeOffsetMode::kEstimate;
+  const auto k = assessTiming(fieldsafeCamera(), steady, kept, std::nullopt, TimeOffsetConfig{}, 5.0);
+  ASSERT_TRUE(k);
+  const VerdictReport kv = judgeQuality(coverage, std::nullopt, VerdictConfig{}, 0.1, k);
+  EXPECT_NE(kv.verdict, Verdict::kGood);
+  EXPECT_TRUE(mentions(kv, "not estimated")) << kv.reasons.front();
 }
 
 TEST(TimingCheck, AnOffsetLeftOutIsNamedAndASynchronisedDriveIsNot) {

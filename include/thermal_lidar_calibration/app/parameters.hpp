@@ -7,6 +7,7 @@
 #include "thermal_lidar_calibration/core/calibration_config.hpp"
 #include "thermal_lidar_calibration/core/drift_config.hpp"
 #include "thermal_lidar_calibration/core/frame_gate.hpp"
+#include "thermal_lidar_calibration/core/person_motion.hpp"
 #include "thermal_lidar_calibration/core/quality_assessment.hpp"
 
 #include <string>
@@ -23,6 +24,7 @@ struct CoreParameters {
   int sync_queue_size = 30;    // ApproximateTime queue per topic
   int pairs_required = 60;     // node: pairs to collect before optimizing
   QualityConfig quality;       // uncertainty, coverage and verdict after a fit (issue 8)
+  MotionConfig motion;         // people's motion from neighbouring scans (issue 21)
   DriftConfig drift;           // the drift watch (issue 9): calibrate_bag --monitor, node monitor
 };
 

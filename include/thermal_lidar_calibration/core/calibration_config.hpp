@@ -72,6 +72,10 @@ struct TimeOffsetConfig {
   double coarse_step_s = 0.01;
   double initial_step_s = 0.005;  // the joint refinement's first delta probe
   double min_step_s = 1e-5;       // and its smallest
+  // Estimate only when the drive resolves delta to this (1 sigma, ms; timing_resolution.hpp):
+  // on a drive that cannot tell a late camera from one mounted further forward, an estimated
+  // delta trades centimetres of translation for nothing (the demo drive: 12 ms, 0.6 -> 4 cm).
+  double max_resolution_ms = 5.0;
   void validate() const;
 };
 

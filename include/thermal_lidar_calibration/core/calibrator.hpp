@@ -56,7 +56,9 @@ struct CalibrationResult {
   std::vector<ConvergenceStep> history;
   double seconds = 0.0;             // wall time of calibrate()
   // Issue 21: the camera time offset the result holds (INTERFACE.md, time_offset_s).
-  TimeOffsetMode time_offset_mode = TimeOffsetMode::kNone;  // as applied
+  TimeOffsetMode time_offset_mode = TimeOffsetMode::kNone;   // as applied
+  TimeOffsetMode time_offset_asked = TimeOffsetMode::kNone;  // as configured
+  double time_resolution_ms = 0.0;  // mode estimate: how well the pairs resolve it (before the search)
   double time_offset_s = 0.0;       // estimated or fixed; 0 when none was applied
   std::string time_offset_note;     // why the applied mode differs from the one asked for
   std::size_t pairs_with_motion = 0;  // pairs whose people's motion was measured

@@ -5,8 +5,10 @@
 #include "thermal_lidar_calibration/core/calibration_pair.hpp"
 #include "thermal_lidar_calibration/core/camera_model.hpp"
 #include "thermal_lidar_calibration/core/frame_gate.hpp"
+#include "thermal_lidar_calibration/core/person_motion.hpp"
 
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <map>
 #include <optional>
@@ -36,11 +38,18 @@ struct FrameIdConflict {
 // ids outnumber the frames that support the tentative ids, the builder switches to those ids
 // and drops the few pairs it had (counted in pairsDroppedForFrameIds()). Once locked, frames
 // with other ids are refused, and frameIdConflict() reports when they keep coming.
+//
+// People's motion (issue 21): with a MotionConfig, every scan of person clusters is observed
+// (observeScan, kept frames or not), and a kept pair waits (pendingPairs) until window_scans
+// later scans have arrived, then gets each person's velocity from the scans around it
+// (person_motion.hpp) and joins pairs(). A frame that already carries velocities (a dataset bag
+// the node wrote) is kept as it is.
 class DatasetBuilder {
  public:
   static constexpr std::size_t kLockPairs = 3;
 
-  DatasetBuilder(CameraModel camera, GateConfig config);
+  DatasetBuilder(CameraModel camera, GateConfig config,
+                 std::optional<MotionConfig> motion = std::nullopt);
 
   // Offer one synchronized candidate frame. `decode` runs only if the frame is not skipped; it
   // may throw std::invalid_argument (counted as kBadMessage, the message returned in `error`).
@@ -51,7 +60,20 @@ class DatasetBuilder {
   // checks and counting as offer(), but no skip or count rule (it was kept under them once).
   // kKept, or kBadMessage with the reason (e.g. recorded with a different camera).
   OfferOutcome restore(Frame frame);
-  void reset();  // forget pairs and counts
+  void reset();  // forget pairs, counts, waiting pairs and scans
+
+  // Every scan of person clusters, in time order (a late one is put in its place). Finishes the
+  // waiting pairs whose later scans are now there. Without a MotionConfig it does nothing.
+  void observeScan(ScanPeople scan);
+  std::size_t pendingPairs() const { return pending_.size(); }
+  // No more scans will come (the end of a bag): the waiting pairs get the motion the scans
+  // there are show, and join pairs().
+  void flushPending();
+  bool tracksMotion() const { return motion_.has_value(); }
+  // The newest scan's people measured from the scans before it only (for a live overlay, which
+  // cannot wait for the next scan); empty without scans or a MotionConfig.
+  std::vector<PersonMotion> latestMotion() const;
+  double latestScanStamp() const { return scans_.empty() ? 0.0 : scans_.back().stamp_s; }
   // Hands over the kept pairs and forgets them, keeping the counts and the frame ids (the drift
   // watch takes each pair as it is kept and must not hold hours of them here).
   std::vector<CalibrationPair> takePairs();
@@ -82,6 +104,13 @@ class DatasetBuilder {
   std::uint64_t pairs_dropped_for_ids_ = 0;
   std::uint64_t refused_in_a_row_ = 0;
   FrameIds last_refused_;
+
+  void keep(CalibrationPair pair);
+  void finishPending(bool all);
+  void measureMotion(CalibrationPair& pair) const;
+  std::optional<MotionConfig> motion_;
+  std::deque<CalibrationPair> pending_;  // kept, waiting for their later scans
+  std::vector<ScanPeople> scans_;        // recent scans, in time order
 };
 
 }  // namespace thermal_lidar_calibration

@@ -1,14 +1,9 @@
 #pragma once
-// Can this drive tell a late camera from one mounted elsewhere, and do the residuals say the
-// stamps are off (issue 21)? A constant time offset delta moves each point on the image by
-// delta times its image speed (its velocity relative to the LiDAR, projected); a change of the
-// pose moves the points by a pattern of six parameters. What the pose cannot mimic is what
-// measures delta: the linearised spread of delta given the pose (`resolution_ms`, 1 sigma) is
-// that part's size against a pixel-scale residual. Straight driving at one speed past standing
-// people moves every point alike, so a translation mimics it all and the resolution is
-// unbounded. And when the time offset was not estimated, pairs whose people cross the image
-// faster fitting worse (rank correlation of their Eq. 1 loss with their image speed) is the
-// signature of stamps that are off. ROS-free.
+// Can this drive tell a late camera from one mounted elsewhere (timing_resolution.hpp), and do
+// the residuals say the stamps are off (issue 21)? When the time offset was not estimated, a
+// joint refinement of pose and offset from the fit that finds a clearly better fit elsewhere is
+// the signature of stamps that are off (pairs whose people cross the image faster fit worse:
+// their rank correlation is reported too). ROS-free.
 
 #include "thermal_lidar_calibration/core/calibration_pair.hpp"
 #include "thermal_lidar_calibration/core/calibrator.hpp"
@@ -21,7 +16,8 @@
 namespace thermal_lidar_calibration {
 
 struct TimingAssessment {
-  TimeOffsetMode mode = TimeOffsetMode::kNone;  // as applied by the fit
+  TimeOffsetMode mode = TimeOffsetMode::kNone;   // as applied by the fit
+  TimeOffsetMode asked = TimeOffsetMode::kNone;  // as configured
   double time_offset_s = 0.0;
   std::optional<double> halfwidth_ms;  // the bootstrap's 95 % half-width (mode estimate)
   std::size_t pairs_with_motion = 0;   // of the pairs used

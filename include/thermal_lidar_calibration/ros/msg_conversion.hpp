@@ -25,6 +25,10 @@ struct DecodedClusters {
 // float32 x, y, z plus an integer (any int/uint width) or float `label` field.
 DecodedClusters decodeClusters(const sensor_msgs::PointCloud2& msg, const std::string& topic);
 
+// The clusters as one centroid per person (issue 21: the scans around a kept pair measure its
+// people's motion). Throws std::invalid_argument as decodeClusters does.
+ScanPeople decodeScanPeople(const sensor_msgs::PointCloud2& msg, const std::string& topic);
+
 // The finite x, y, z of every k-th point, k chosen so that at most about `max_points` are read
 // (a full cloud for the overlay; other fields are ignored). The layout is checked exactly as
 // decodeClusters checks it (one check for every cloud), so a declared size the data does not
