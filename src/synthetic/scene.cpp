@@ -13,6 +13,10 @@ namespace {
 constexpr double kPathStepM = 0.1;
 constexpr double kStrideM = 1.4;  // one full gait cycle
 constexpr double kMinSeparationM = 0.9;
+// The field profile's meander: curvature A sin(2 pi s / wavelength + phase), so the heading swings
+// by +-A wavelength / (2 pi) (about 0.2 rad) and the yaw rate at 2 m/s reaches 0.06 rad/s, as a
+// tractor following a field's rows or contours.
+constexpr double kMeanderCurvature = 0.03;  // 1/m
 
 void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("scene config: " + what);
@@ -58,14 +62,33 @@ BodyPose PersonTrack::poseAt(double t_s) const {
   return pose;
 }
 
-Scene::Scene(const SceneConfig& config, std::uint64_t seed) : config_(config) {
+Eigen::Vector2d PersonTrack::velocityAt(double t_s) const {
+  if (walk_speed_mps <= 0.0 || walk_half_length_m <= 0.0) return Eigen::Vector2d::Zero();
+  // d/dt of anchor + dir L sin(w (t + phase)), w = v / L.
+  const double w = walk_speed_mps / walk_half_length_m;
+  const Eigen::Vector2d dir(std::cos(heading_rad), std::sin(heading_rad));
+  return dir * walk_speed_mps * std::cos(w * (t_s + phase_s));
+}
+
+Scene::Scene(const SceneConfig& config, std::uint64_t seed)
+    : config_(config), schedule_(DriveSchedule::steady(config.speed_mps)) {
   config_.validate();
+  const bool field = config_.speed_profile == SpeedProfile::kField;
+  if (field) {
+    // Streams of their own: the steady drive's draws below are the same with either profile.
+    schedule_ = DriveSchedule::field(config_.speed_mps, config_.duration_s, seed ^ 0xf1e1d5c4ed01eULL);
+    std::mt19937_64 meander_rng(seed ^ 0x3ea2de7a11ULL);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    meander_amplitude_ = kMeanderCurvature;
+    meander_wavelength_m_ = 35.0 + 20.0 * unit(meander_rng);
+    meander_phase_ = 2.0 * M_PI * unit(meander_rng);
+  }
   std::mt19937_64 rng(seed ^ 0x5ce9e5ce9eULL);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   auto uniform = [&](double a, double b) { return a + (b - a) * unit(rng); };
 
   // Groups along the path, then the path: straight legs, a turn just after each group.
-  const double drive_m = config_.speed_mps * config_.duration_s;
+  const double drive_m = schedule_.arcLengthAt(config_.duration_s);
   std::vector<double> group_s;
   for (double gs = config_.first_group_m; gs < drive_m + 35.0; gs += config_.group_spacing_m) {
     group_s.push_back(gs);
@@ -76,7 +99,9 @@ Scene::Scene(const SceneConfig& config, std::uint64_t seed) : config_(config) {
     const double angle = uniform(config_.min_turn_rad, config_.max_turn_rad);
     turn_start.push_back(gs + config_.turn_after_group_m);
     turn_curvature.push_back(turn_sign / config_.turn_radius_m);
-    turn_length.push_back(angle * config_.turn_radius_m);
+    // Field: the curvature eases in and out (sin^2, peaking at 1 / turn_radius_m), so the yaw
+    // rate has no step; the turn is twice as long for the same angle.
+    turn_length.push_back((field ? 2.0 : 1.0) * angle * config_.turn_radius_m);
     if (unit(rng) < 0.8) turn_sign = -turn_sign;  // mostly alternate: the path meanders onwards
   }
   const double needed_m = drive_m + config_.group_spacing_m + 40.0;
@@ -84,14 +109,24 @@ Scene::Scene(const SceneConfig& config, std::uint64_t seed) : config_(config) {
   Eigen::Vector2d xy = Eigen::Vector2d::Zero();
   path_s_.push_back(0.0);
   path_xy_.push_back(xy);
+  path_heading_.push_back(heading);
   std::size_t turn = 0;
   for (double s = kPathStepM; s <= needed_m; s += kPathStepM) {
     while (turn < turn_start.size() && s > turn_start[turn] + turn_length[turn]) ++turn;
     const double mid = s - 0.5 * kPathStepM;
-    if (turn < turn_start.size() && mid >= turn_start[turn]) heading += turn_curvature[turn] * kPathStepM;
+    if (turn < turn_start.size() && mid >= turn_start[turn]) {
+      double ease = 1.0;
+      if (field) {
+        const double x = std::sin(M_PI * (mid - turn_start[turn]) / turn_length[turn]);
+        ease = x * x;
+      }
+      heading += ease * turn_curvature[turn] * kPathStepM;
+    }
+    if (field) heading += meanderCurvature(mid) * kPathStepM;
     xy += kPathStepM * Eigen::Vector2d(std::cos(heading), std::sin(heading));
     path_s_.push_back(s);
     path_xy_.push_back(xy);
+    path_heading_.push_back(heading);
   }
 
   const int groups = static_cast<int>(group_s.size());
@@ -159,8 +194,46 @@ Scene::Scene(const SceneConfig& config, std::uint64_t seed) : config_(config) {
   }
 }
 
+double Scene::meanderCurvature(double s) const {
+  return meander_amplitude_ * std::sin(2.0 * M_PI * s / meander_wavelength_m_ + meander_phase_);
+}
+
+void Scene::headingAt(double s, double* heading_rad, double* rate_rad_per_m) const {
+  *rate_rad_per_m = 0.0;
+  if (config_.speed_profile != SpeedProfile::kField) {
+    *heading_rad = poseAtArcLength(s).yaw_rad;
+    return;
+  }
+  // Knots: the start's heading at x = 0, chord i's heading at its middle x = i - 0.5 (x in steps).
+  const double x = std::max(0.0, s / kPathStepM);
+  const std::size_t last = path_heading_.size() - 1;
+  const std::size_t i = std::min<std::size_t>(static_cast<std::size_t>(std::floor(x + 0.5)), last);
+  if (i == last) {
+    *heading_rad = path_heading_[last];
+    return;
+  }
+  const double x0 = i == 0 ? 0.0 : i - 0.5;
+  const double x1 = i + 0.5;
+  const double rate = (path_heading_[i + 1] - path_heading_[i]) / (x1 - x0);
+  *heading_rad = path_heading_[i] + (x - x0) * rate;
+  if (s >= 0.0) *rate_rad_per_m = rate / kPathStepM;
+}
+
 VehiclePose Scene::poseAtArcLength(double s) const {
-  s = std::max(0.0, std::min(s, path_s_.back()));
+  if (s < 0.0) {
+    // Before the start the vehicle came straight along its heading at the start (the steady
+    // drive's is its first chord's).
+    VehiclePose pose;
+    if (config_.speed_profile == SpeedProfile::kField) {
+      pose.yaw_rad = path_heading_[0];
+    } else {
+      const Eigen::Vector2d d = path_xy_[1] - path_xy_[0];
+      pose.yaw_rad = std::atan2(d.y(), d.x());
+    }
+    pose.xy = path_xy_[0] + s * Eigen::Vector2d(std::cos(pose.yaw_rad), std::sin(pose.yaw_rad));
+    return pose;
+  }
+  s = std::min(s, path_s_.back());
   const auto it = std::upper_bound(path_s_.begin(), path_s_.end(), s);
   const std::size_t hi = std::min<std::size_t>(std::max<std::ptrdiff_t>(it - path_s_.begin(), 1), path_s_.size() - 1);
   const std::size_t lo = hi - 1;
@@ -170,10 +243,34 @@ VehiclePose Scene::poseAtArcLength(double s) const {
   pose.xy = path_xy_[lo] + f * (path_xy_[hi] - path_xy_[lo]);
   const Eigen::Vector2d d = path_xy_[hi] - path_xy_[lo];
   pose.yaw_rad = std::atan2(d.y(), d.x());
+  if (config_.speed_profile == SpeedProfile::kField) {
+    // The heading turns smoothly (not chord by chord), so the yaw rate is what vehicleMotionAt says.
+    double rate = 0.0;
+    headingAt(s, &pose.yaw_rad, &rate);
+  }
   return pose;
 }
 
-VehiclePose Scene::vehicleAt(double t_s) const { return poseAtArcLength(config_.speed_mps * t_s); }
+VehiclePose Scene::vehicleAt(double t_s) const { return poseAtArcLength(schedule_.arcLengthAt(t_s)); }
+
+VehicleMotion Scene::vehicleMotionAt(double t_s) const {
+  const double s = schedule_.arcLengthAt(t_s);
+  VehicleMotion m;
+  m.pose = poseAtArcLength(s);
+  if (s >= path_s_.back()) return m;  // the path ends: the vehicle stands
+  m.speed_mps = schedule_.speedAt(t_s);
+  m.velocity_mps = m.speed_mps * Eigen::Vector2d(std::cos(m.pose.yaw_rad), std::sin(m.pose.yaw_rad));
+  double heading = 0.0, rate = 0.0;
+  if (config_.speed_profile == SpeedProfile::kField) {
+    headingAt(s, &heading, &rate);
+  } else if (s >= 0.0) {
+    // The steady path's own turning rate: the chord headings' change over the chords around s.
+    const std::size_t i = std::min<std::size_t>(static_cast<std::size_t>(s / kPathStepM) + 1, path_heading_.size() - 2);
+    rate = (path_heading_[i + 1] - path_heading_[i - 1]) / (2.0 * kPathStepM);
+  }
+  m.yaw_rate_radps = rate * m.speed_mps;
+  return m;
+}
 
 }  // namespace synthetic
 }  // namespace thermal_lidar_calibration
