@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <random>
 #include <stdexcept>
@@ -15,7 +16,6 @@ namespace thermal_lidar_calibration {
 namespace synthetic {
 namespace {
 
-constexpr double kWorldCullM = 100.0;  // objects farther than this from the vehicle are dropped
 constexpr std::int32_t kFalseClusterLabelBase = 1000;
 
 }  // namespace
@@ -64,6 +64,7 @@ void SyntheticConfig::validate() const {
   rig.lidar.validate();
   noise.validate();
   scene.validate();
+  timing.validate();
 }
 
 SyntheticRig::SyntheticRig(const SyntheticConfig& config) : config_(config) {
@@ -80,6 +81,7 @@ SyntheticRig::SyntheticRig(const SyntheticConfig& config) : config_(config) {
   for (std::size_t i = 0; i < scene_->people().size(); ++i) person_grey_.push_back(grey(rng));
   drawChange();
   if (config_.raw) placeConfounders();
+  if (config_.timing.swept()) sweep_ = std::make_unique<LidarSweep>(config_.timing, config_.rig.lidar.azimuth_count);
 }
 
 // What fools a thermal person detector besides sun-heated posts (issue 7): every 25 s of drive a
@@ -148,62 +150,37 @@ ColumnRange SyntheticRig::emptyColumns() const {
   return regionColumns(config_.empty_image_region, config_.rig.camera.width);
 }
 
-std::vector<WorldObject> SyntheticRig::snapshot(int index) const {
-  const double t = index / config_.frame_rate_hz;
-  const VehiclePose vehicle = scene_->vehicleAt(t);
-  Eigen::Isometry3d T_world_lidar = Eigen::Isometry3d::Identity();
-  T_world_lidar.translate(Eigen::Vector3d(vehicle.xy.x(), vehicle.xy.y(), config_.rig.lidar_height_m));
-  T_world_lidar.rotate(Eigen::AngleAxisd(vehicle.yaw_rad, Eigen::Vector3d::UnitZ()));
-  const Eigen::Isometry3d T_lidar_world = T_world_lidar.inverse();
+SyntheticFrame SyntheticRig::render(int index) const { return renderWorld(frameWorld(index), index, stampOf(index)); }
 
-  std::vector<WorldObject> objects;
-  const auto& people = scene_->people();
-  for (std::size_t i = 0; i < people.size(); ++i) {
-    const BodyPose pose = people[i].poseAt(t);
-    if ((pose.ground_xy - vehicle.xy).norm() > kWorldCullM) continue;
-    WorldObject obj;
-    obj.solid = makePersonBody(pose).transformed(T_lidar_world);
-    obj.person_id = people[i].id;
-    obj.grey_level = person_grey_[i];
-    objects.push_back(std::move(obj));
-  }
-  for (const auto& item : scene_->clutter()) {
-    if ((item.solid.boundingCentre().head<2>() - vehicle.xy).norm() > kWorldCullM) continue;
-    WorldObject obj;
-    obj.solid = item.solid.transformed(T_lidar_world);
-    obj.clutter_id = item.id;
-    obj.grey_level = 72.0 + 7.0 * (item.id % 5);
-    // Raw data: every fourth post or bush is sun-heated into the body band (~300 K), a warm
-    // confounder only its shape tells from a person.
-    if (config_.raw && item.id % 4 == 0) obj.grey_level = 180.0 + 3.0 * (item.id % 5);
-    objects.push_back(std::move(obj));
-  }
-  for (const Confounder& c : confounders_) {
-    if ((c.solid.boundingCentre().head<2>() - vehicle.xy).norm() > kWorldCullM) continue;
-    WorldObject obj;
-    obj.solid = c.solid.transformed(T_lidar_world);
-    obj.clutter_id = c.id;
-    obj.grey_level = c.grey_level;
-    objects.push_back(std::move(obj));
-  }
-  removePeopleSeenInEmptyRegion(objects, index);
-  return objects;
+SyntheticFrame SyntheticRig::renderSnapshot(const std::vector<WorldObject>& objects, int index,
+                                            double stamp_s) const {
+  FrameWorld world;
+  world.objects = objects;
+  world.camera_count = objects.size();
+  world.lidar = objects;
+  for (std::size_t j = 0; j < objects.size(); ++j) world.lidar_object.push_back(static_cast<int>(j));
+  return renderWorld(world, index, stamp_s);
 }
 
-SyntheticFrame SyntheticRig::render(int index) const {
-  return renderSnapshot(snapshot(index), index, config_.start_stamp_s + index / config_.frame_rate_hz);
-}
-
-// What the sensors see of a snapshot, before any noise.
-struct SyntheticRig::Observation {
-  std::vector<LidarReturn> returns;
-  cv::Mat owners;  // CV_32SC1: object index per pixel, -1 none
-};
-
-SyntheticRig::Observation SyntheticRig::observe(const std::vector<WorldObject>& objects, int index) const {
+SyntheticRig::Observation SyntheticRig::observe(const FrameWorld& world, int index) const {
   Observation seen;
-  seen.returns = castLidarScan(config_.rig.lidar, objects, groundZ());
-  seen.owners = rendererAt(index).renderOwners(objects);
+  if (world.lidar_refs.empty()) {
+    seen.returns = castLidarScan(config_.rig.lidar, world.lidar, groundZ());
+    for (auto& r : seen.returns) {
+      if (r.object >= 0) r.object = world.lidar_object[static_cast<std::size_t>(r.object)];
+    }
+  } else {
+    seen.returns = castSweptScan(world);
+    seen.time_s.reserve(seen.returns.size());
+    for (const auto& r : seen.returns) seen.time_s.push_back(static_cast<float>(sweep_->timeFromStamp(r.azimuth)));
+  }
+  if (world.camera_count == world.objects.size()) {
+    seen.owners = rendererAt(index).renderOwners(world.objects);
+  } else {
+    const std::vector<WorldObject> camera(world.objects.begin(),
+                                          world.objects.begin() + static_cast<std::ptrdiff_t>(world.camera_count));
+    seen.owners = rendererAt(index).renderOwners(camera);
+  }
   return seen;
 }
 
@@ -218,38 +195,7 @@ bool SyntheticRig::projectsIntoEmptyRegion(const Eigen::Vector3f& point_lidar, i
   return px.x() >= columns.begin - margin_px - 0.5 && px.x() < columns.end + margin_px - 0.5;
 }
 
-void SyntheticRig::removePeopleSeenInEmptyRegion(std::vector<WorldObject>& objects, int index) const {
-  if (config_.empty_image_region == ImageRegion::kNone) return;
-  // A margin keeps range noise and mask edge noise from carrying a person across the border.
-  constexpr int kMarginPx = 2;
-  const ColumnRange columns = emptyColumns();
-  const ColumnRange wide{columns.begin - kMarginPx, columns.end + kMarginPx};
-  // Removing a person can uncover one behind them: repeat until nobody shows there.
-  for (;;) {
-    const Observation seen = observe(objects, index);
-    std::vector<char> remove(objects.size(), 0);
-    for (int v = 0; v < seen.owners.rows; ++v) {
-      const int* own = seen.owners.ptr<int>(v);
-      for (int u = std::max(0, wide.begin); u < std::min(seen.owners.cols, wide.end); ++u) {
-        if (own[u] >= 0 && objects[static_cast<std::size_t>(own[u])].isPerson()) remove[own[u]] = 1;
-      }
-    }
-    for (const auto& r : seen.returns) {
-      if (r.object < 0 || remove[r.object] || !objects[static_cast<std::size_t>(r.object)].isPerson()) continue;
-      if (projectsIntoEmptyRegion(r.point, index, kMarginPx)) remove[r.object] = 1;
-    }
-    std::vector<WorldObject> kept;
-    for (std::size_t j = 0; j < objects.size(); ++j) {
-      if (!remove[j]) kept.push_back(std::move(objects[j]));
-    }
-    const bool done = kept.size() == objects.size();
-    objects = std::move(kept);
-    if (done) return;
-  }
-}
-
-SyntheticFrame SyntheticRig::renderSnapshot(const std::vector<WorldObject>& objects, int index,
-                                            double stamp_s) const {
+SyntheticFrame SyntheticRig::renderWorld(const FrameWorld& world, int index, double stamp_s) const {
   std::mt19937_64 rng_detect(mixSeed(config_.seed, 1, static_cast<std::uint64_t>(index)));
   std::mt19937_64 rng_noise(mixSeed(config_.seed, 2, static_cast<std::uint64_t>(index)));
   std::mt19937_64 rng_image(mixSeed(config_.seed, 3, static_cast<std::uint64_t>(index)));
@@ -262,7 +208,8 @@ SyntheticFrame SyntheticRig::renderSnapshot(const std::vector<WorldObject>& obje
   frame.stamp_s = stamp_s;
 
   // LiDAR scan with range noise along each ray; the camera's nearest object per pixel.
-  Observation seen = observe(objects, index);
+  const std::vector<WorldObject>& objects = world.objects;
+  Observation seen = observe(world, index);
   std::vector<LidarReturn>& returns = seen.returns;
   const cv::Mat& owners = seen.owners;
   if (noise.range_sigma_m > 0.0) {
@@ -286,25 +233,37 @@ SyntheticFrame SyntheticRig::renderSnapshot(const std::vector<WorldObject>& obje
     }
   }
 
+  // Each detector's range is judged where its sensor saw the object (the LiDAR's at the stamp).
+  const double kNowhere = std::numeric_limits<double>::infinity();
+  std::vector<double> lidar_distance(objects.size(), kNowhere), camera_distance(objects.size(), kNowhere);
+  for (std::size_t k = 0; k < world.lidar.size(); ++k) {
+    lidar_distance[static_cast<std::size_t>(world.lidar_object[k])] =
+        world.lidar[k].solid.boundingCentre().head<2>().norm();
+  }
+  for (std::size_t j = 0; j < world.camera_count; ++j) {
+    camera_distance[j] = objects[j].solid.boundingCentre().head<2>().norm();
+  }
+
   // Detectors. Both random draws are made for every candidate so outcomes stay aligned.
   std::vector<char> in_cluster(objects.size(), 0), in_mask(objects.size(), 0);
   for (std::size_t j = 0; j < objects.size(); ++j) {
     const double u_cluster = unit(rng_detect);
     const double u_mask = unit(rng_detect);
-    const double dist = objects[j].solid.boundingCentre().head<2>().norm();
-    if (dist > det.detection_range_m) continue;
+    const bool lidar_in_range = lidar_distance[j] <= det.detection_range_m;
+    const bool camera_in_range = camera_distance[j] <= det.detection_range_m;
+    if (!lidar_in_range && !camera_in_range) continue;
     if (objects[j].isPerson()) {
-      in_cluster[j] = hits[j] >= det.min_cluster_points && u_cluster >= noise.miss_rate;
-      in_mask[j] = pixels[j] >= det.min_mask_pixels && u_mask >= noise.miss_rate;
+      in_cluster[j] = lidar_in_range && hits[j] >= det.min_cluster_points && u_cluster >= noise.miss_rate;
+      in_mask[j] = camera_in_range && pixels[j] >= det.min_mask_pixels && u_mask >= noise.miss_rate;
       PersonInFrame p;
       p.person_id = objects[j].person_id;
-      p.distance_m = dist;
+      p.distance_m = lidar_in_range ? lidar_distance[j] : camera_distance[j];
       p.lidar_hits = hits[j];
       p.visible_pixels = pixels[j];
       p.in_cluster = in_cluster[j] != 0;
       frame.people.push_back(p);
     } else {
-      in_cluster[j] = hits[j] >= det.min_cluster_points && u_cluster < noise.false_cluster_rate;
+      in_cluster[j] = lidar_in_range && hits[j] >= det.min_cluster_points && u_cluster < noise.false_cluster_rate;
     }
   }
   if (config_.empty_image_region != ImageRegion::kNone) {
@@ -317,11 +276,14 @@ SyntheticFrame SyntheticRig::renderSnapshot(const std::vector<WorldObject>& obje
     }
   }
 
-  for (const auto& r : returns) {
+  const bool point_times = config_.timing.lidar_point_time;
+  for (std::size_t i = 0; i < returns.size(); ++i) {
+    const LidarReturn& r = returns[i];
     if (r.object < 0 || !in_cluster[static_cast<std::size_t>(r.object)]) continue;
     const WorldObject& obj = objects[static_cast<std::size_t>(r.object)];
     frame.cluster_points.push_back(r.point);
     frame.cluster_labels.push_back(obj.isPerson() ? obj.person_id : kFalseClusterLabelBase + obj.clutter_id);
+    if (point_times) frame.cluster_time_s.push_back(seen.time_s[i]);
   }
 
   // Mask: ids 1..N by increasing person id.
@@ -368,9 +330,11 @@ SyntheticFrame SyntheticRig::renderSnapshot(const std::vector<WorldObject>& obje
         if (own[u] >= 0) id[u] = static_cast<std::uint16_t>(objects[static_cast<std::size_t>(own[u])].person_id);
       }
     }
-    for (const auto& r : returns) {
+    for (std::size_t i = 0; i < returns.size(); ++i) {
+      const LidarReturn& r = returns[i];
       if (r.range_m > config_.raw_cloud_max_range_m) continue;
       frame.full_points.push_back(r.point);
+      if (point_times) frame.full_time_s.push_back(seen.time_s[i]);
       float intensity = 15.f + static_cast<float>(r.beam % 4);
       std::uint32_t truth_id = 0;
       if (r.object >= 0) {
@@ -383,10 +347,12 @@ SyntheticFrame SyntheticRig::renderSnapshot(const std::vector<WorldObject>& obje
       frame.full_truth_id.push_back(truth_id);
     }
   } else if (config_.full_cloud) {
-    for (const auto& r : returns) {
+    for (std::size_t i = 0; i < returns.size(); ++i) {
+      const LidarReturn& r = returns[i];
       if (r.azimuth % config_.full_cloud_azimuth_step != 0 || r.range_m > config_.full_cloud_max_range_m) continue;
       if (r.object < 0 && r.beam % 2 != 0) continue;  // ground: every second beam is plenty
       frame.full_points.push_back(r.point);
+      if (point_times) frame.full_time_s.push_back(seen.time_s[i]);
       float intensity = 15.f + static_cast<float>(r.beam % 4);
       if (r.object >= 0) intensity = objects[static_cast<std::size_t>(r.object)].isPerson() ? 80.f : 45.f;
       frame.full_intensity.push_back(intensity);

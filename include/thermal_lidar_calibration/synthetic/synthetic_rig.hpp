@@ -1,15 +1,18 @@
 #pragma once
 // Renders the frames of a synthetic drive: LiDAR scan, person clusters, thermal image and person
 // mask, with the detector behaviour and noise of the configuration. ROS-free; frame i depends
-// only on (seed, i), so frames can be rendered in any order or in parallel.
+// only on (seed, i), so frames can be rendered in any order or in parallel. Each sensor sees the
+// world at its own instants (SensorTimingConfig): by default both at the frame's stamp.
 
 #include "thermal_lidar_calibration/core/frame_gate.hpp"
 #include "thermal_lidar_calibration/core/person_counter.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
 #include "thermal_lidar_calibration/synthetic/image_region.hpp"
+#include "thermal_lidar_calibration/synthetic/lidar_scanner.hpp"
 #include "thermal_lidar_calibration/synthetic/noise_model.hpp"
 #include "thermal_lidar_calibration/synthetic/rig_presets.hpp"
 #include "thermal_lidar_calibration/synthetic/scene.hpp"
+#include "thermal_lidar_calibration/synthetic/sensor_timing.hpp"
 #include "thermal_lidar_calibration/synthetic/thermal_renderer.hpp"
 #include "thermal_lidar_calibration/synthetic/world_object.hpp"
 
@@ -87,6 +90,9 @@ struct SyntheticConfig {
   // (left/right), and in a frame where a person would show there (pixels or LiDAR points within
   // 2 px) they are not in that frame's world at all; nor are false clusters or mask blobs there.
   ImageRegion empty_image_region = ImageRegion::kNone;
+  // Issue 21: the camera's offset from its stamps, the LiDAR's sweep and stamp convention. The
+  // speed profile is scene.speed_profile.
+  SensorTimingConfig timing;
   void validate() const;  // throws std::invalid_argument
 };
 
@@ -111,10 +117,23 @@ struct SyntheticFrame {
   std::vector<float> full_intensity;
   std::vector<std::uint16_t> full_ring;        // with `raw`: the beam of each full point
   std::vector<std::uint32_t> full_truth_id;    // with `raw`: person id of each point, 0 = none
+  // With timing.lidar_point_time: each point's capture time minus the stamp, s (velodyne's `time`).
+  std::vector<float> cluster_time_s;
+  std::vector<float> full_time_s;
   cv::Mat truth_person_ids;  // with `raw`: CV_16UC1, the person id each pixel shows (0 = none), every
                              // person rendered, at any range (the ideal mask holds only detectable ones)
   PeopleCounts counts;     // as the ingest path counts them (core countPeople)
   std::vector<PersonInFrame> people;  // every person within detection range
+};
+
+// A person's place and motion relative to the LiDAR at one instant: what the camera sees change
+// (the vehicle's translation and turning, and the person's walk), for comparing estimates with.
+struct PersonMotion {
+  int person_id = 0;
+  // The body's vertical axis at half its height, in the LiDAR frame of that instant, m.
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
+  // d/dt of position_m as seen in the moving LiDAR frame: R^T (v_person - v_vehicle) - w x p.
+  Eigen::Vector3d velocity_mps = Eigen::Vector3d::Zero();
 };
 
 class SyntheticRig {
@@ -123,11 +142,21 @@ class SyntheticRig {
 
   SyntheticFrame render(int index) const;
   // Lower level: one frame from an explicit world snapshot (objects in the LiDAR frame), seen
-  // with the extrinsic of frame `index`.
+  // by both sensors at once (an instantaneous scan), with the extrinsic of frame `index`.
   SyntheticFrame renderSnapshot(const std::vector<WorldObject>& objects, int index, double stamp_s) const;
-  // The objects of frame `index` in the LiDAR frame (people first, then clutter in range),
-  // without the people an empty image region keeps out of that frame.
+  // The objects of frame `index` at its stamp in the LiDAR frame (people first, then clutter in
+  // range), without the people an empty image region keeps out of that frame.
   std::vector<WorldObject> snapshot(int index) const;
+  // The objects near the vehicle at any instant (`stamp_s` on the bag's clock) in the LiDAR frame
+  // of that instant: what an instantaneous sensor would see then (no empty region applied).
+  std::vector<WorldObject> worldAt(double stamp_s) const;
+  double stampOf(int index) const { return config_.start_stamp_s + index / config_.frame_rate_hz; }
+
+  // Person `person_id` (1-based, as the cluster labels) at `stamp_s`; throws
+  // std::invalid_argument for an id the scene does not have.
+  PersonMotion personMotion(int person_id, double stamp_s) const;
+  // The swept scan's timing (null when scans are instantaneous).
+  const LidarSweep* sweep() const { return sweep_.get(); }
 
   const SyntheticConfig& config() const { return config_; }
   const Scene& scene() const { return *scene_; }
@@ -142,10 +171,42 @@ class SyntheticRig {
   ColumnRange emptyColumns() const;
 
  private:
-  struct Observation;
-  Observation observe(const std::vector<WorldObject>& objects, int index) const;
+  // What the sensors see of a frame's world, before any noise; object indices are into
+  // FrameWorld::objects.
+  struct Observation {
+    std::vector<LidarReturn> returns;
+    std::vector<float> time_s;  // swept scans: per return, capture time minus the stamp
+    cv::Mat owners;             // CV_32SC1: object index per pixel, -1 none
+  };
+  // One object of the world, placed at any instant by place().
+  struct ObjectRef {
+    enum class Kind : std::uint8_t { kPerson, kClutter, kConfounder } kind = Kind::kPerson;
+    std::size_t index = 0;  // into the scene's people or clutter, or confounders_
+    bool operator==(const ObjectRef& o) const { return kind == o.kind && index == o.index; }
+  };
+  // What each sensor sees of one frame. objects[0, camera_count) are the camera's, placed at its
+  // instant; the objects only the LiDAR sees follow (placed at the scan's stamp). lidar holds
+  // the LiDAR's objects at the stamp (what an instantaneous scan casts), lidar_object[k] is
+  // lidar[k]'s index in objects; a swept scan places lidar_refs[k] anew per sector.
+  struct FrameWorld {
+    std::vector<WorldObject> objects;
+    std::size_t camera_count = 0;
+    std::vector<WorldObject> lidar;
+    std::vector<int> lidar_object;
+    std::vector<ObjectRef> lidar_refs;  // empty: the scan is instantaneous
+    double scan_time_s = 0.0;           // drive time of the stamp
+  };
+  FrameWorld frameWorld(int index) const;
+  SyntheticFrame renderWorld(const FrameWorld& world, int index, double stamp_s) const;
+  Observation observe(const FrameWorld& world, int index) const;
+  std::vector<LidarReturn> castSweptScan(const FrameWorld& world) const;
+  // The objects within kWorldCullM of the vehicle at drive time t_s, people first, then clutter,
+  // then the raw drive's confounders; and one of them placed at t_s in the LiDAR frame then.
+  std::vector<ObjectRef> objectsNear(double t_s) const;
+  WorldObject place(const ObjectRef& ref, const Eigen::Isometry3d& T_lidar_world, double t_s) const;
+  Eigen::Isometry3d lidarFromWorld(double t_s) const;
   // Drops every person who would be seen (pixels or LiDAR points) in the empty region.
-  void removePeopleSeenInEmptyRegion(std::vector<WorldObject>& objects, int index) const;
+  void removePeopleSeenInEmptyRegion(FrameWorld& world, int index) const;
   bool projectsIntoEmptyRegion(const Eigen::Vector3f& point_lidar, int index, int margin_px) const;
   void drawChange();
 
@@ -164,6 +225,7 @@ class SyntheticRig {
   };
   std::vector<Confounder> confounders_;
   void placeConfounders();
+  std::unique_ptr<LidarSweep> sweep_;
 };
 
 // The decisions a consumer's gate (core FrameGate, as in DatasetBuilder) makes on frames with
