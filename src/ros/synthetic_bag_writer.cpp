@@ -7,7 +7,9 @@
 #include <sensor_msgs/point_cloud2_iterator.h>
 #include <tf2_msgs/TFMessage.h>
 
+#include <cstring>
 #include <random>
+#include <stdexcept>
 #include <utility>
 
 namespace thermal_lidar_calibration {
@@ -27,6 +29,35 @@ boost::shared_ptr<ros::M_string> latchedConnectionHeader() {
   (*header)["callerid"] = "/make_synthetic_bag";
   (*header)["latching"] = "1";
   return header;
+}
+
+// Appends a float32 field `name` after the fields `msg` has (point_step grows by 4).
+void appendFloatField(sensor_msgs::PointCloud2& msg, const std::string& name) {
+  sensor_msgs::PointField field;
+  field.name = name;
+  field.offset = msg.point_step;
+  field.datatype = sensor_msgs::PointField::FLOAT32;
+  field.count = 1;
+  msg.fields.push_back(field);
+  msg.point_step += 4;
+}
+
+// Per-point capture times as the velodyne driver writes them: float32 `time`, seconds from the
+// header stamp, after the other fields. `msg` is one of our own dense, unpadded clouds.
+sensor_msgs::PointCloud2 withPointTimes(const sensor_msgs::PointCloud2& msg, const std::vector<float>& time_s) {
+  if (time_s.size() != static_cast<std::size_t>(msg.width) * msg.height) {
+    throw std::invalid_argument("withPointTimes: one time per point");
+  }
+  sensor_msgs::PointCloud2 out = msg;
+  appendFloatField(out, "time");
+  out.row_step = out.point_step * out.width;
+  out.data.assign(static_cast<std::size_t>(out.row_step) * out.height, 0);
+  for (std::size_t i = 0; i < time_s.size(); ++i) {
+    std::uint8_t* p = out.data.data() + i * out.point_step;
+    std::memcpy(p, msg.data.data() + i * msg.point_step, msg.point_step);
+    std::memcpy(p + msg.point_step, &time_s[i], 4);
+  }
+  return out;
 }
 
 // A raw scan as a Velodyne driver's pointcloud nodelet writes it (x, y, z, intensity, ring),
@@ -95,15 +126,21 @@ void SyntheticBagWriter::write(const syn::SyntheticFrame& f) {
     bag_.write("/thermal/camera_info", info.header.stamp, info);
   }
   bag_.write("/thermal/human_mask", ros::Time(t_mask), encodeMonoImage(f.mask, camera_frame, t_mask));
+  // Per-point times (issue 21) go on every LiDAR cloud, the velodyne way.
+  const bool times = config_.timing.lidar_point_time;
+  auto timed = [&](const sensor_msgs::PointCloud2& cloud, const std::vector<float>& time_s) {
+    return times ? withPointTimes(cloud, time_s) : cloud;
+  };
   bag_.write("/lidar/human_clusters", ros::Time(t_clusters),
-             encodeClusters(f.cluster_points, f.cluster_labels, lidar_frame, t_clusters));
+             timed(encodeClusters(f.cluster_points, f.cluster_labels, lidar_frame, t_clusters), f.cluster_time_s));
   if (config_.raw) {
-    bag_.write("/lidar/points", ros::Time(t_clusters), encodeRawScan(f, lidar_frame, t_clusters));
+    bag_.write("/lidar/points", ros::Time(t_clusters), timed(encodeRawScan(f, lidar_frame, t_clusters), f.full_time_s));
     bag_.write("/truth/thermal_person_ids", ros::Time(t_image),
                encodeMonoImage(f.truth_person_ids, camera_frame, t_image));
   } else if (config_.full_cloud) {
     bag_.write("/lidar/points", ros::Time(t_clusters),
-               encodePointsWithIntensity(f.full_points, f.full_intensity, lidar_frame, t_clusters));
+               timed(encodePointsWithIntensity(f.full_points, f.full_intensity, lidar_frame, t_clusters),
+                     f.full_time_s));
   }
 }
 

@@ -46,6 +46,18 @@ void printSummary(const syn::SyntheticRig& rig, const std::vector<PeopleCounts>&
     std::printf("empty image region %s: columns %d..%d hold no person\n", syn::toString(c.empty_image_region),
                 empty.begin, empty.end - 1);
   }
+  if (c.timing.camera_time_offset_s != 0.0) {
+    std::printf("the images show the world %.3f s after their stamps (time_offset_s)\n", c.timing.camera_time_offset_s);
+  }
+  if (const syn::LidarSweep* sweep = rig.sweep()) {
+    std::printf("the LiDAR sweeps from %.3f to %.3f s around its stamp (%s)%s\n", sweep->firstPointFromStamp(),
+                sweep->lastPointFromStamp(), syn::toString(c.timing.lidar_stamp),
+                c.timing.lidar_point_time ? ", with a per-point time field" : "");
+  }
+  if (c.scene.speed_profile != syn::SpeedProfile::kSteady) {
+    std::printf("speed profile %s: 0 to %.1f m/s\n", syn::toString(c.scene.speed_profile),
+                rig.scene().schedule().maxSpeed());
+  }
 }
 
 }  // namespace

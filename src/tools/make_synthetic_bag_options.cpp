@@ -68,7 +68,7 @@ void parseExtrinsicChange(const std::string& flag, const std::string& text, Make
 }
 
 // Checks that need every option: conflicts and derived defaults.
-void finish(MakeSyntheticBagOptions& o, bool change_given, double frame_rate_hz) {
+void finish(MakeSyntheticBagOptions& o, bool change_given, bool cut_given, double frame_rate_hz) {
   if (o.output.empty()) throw UsageError("--output OUT.bag is required (see --help)");
   if (o.lidar_frame.empty() || o.camera_frame.empty() || o.lidar_frame == o.camera_frame) {
     throw UsageError("--lidar-frame and --camera-frame must be non-empty and different");
@@ -84,6 +84,11 @@ void finish(MakeSyntheticBagOptions& o, bool change_given, double frame_rate_hz)
   if (change_given && !(o.extrinsic_change_at_s > 0.0 && o.extrinsic_change_at_s < duration_s)) {
     throw UsageError("--extrinsic-change-at must be inside the drive, between 0 and " + std::to_string(duration_s) +
                      " s (the drive's length), got " + std::to_string(o.extrinsic_change_at_s));
+  }
+  // Per-point times come from a sweep; a Velodyne driver stamps the sweep's end by default.
+  if (o.lidar_point_time && o.lidar_stamp == "instant") o.lidar_stamp = "end";
+  if (cut_given && o.lidar_stamp == "instant") {
+    throw UsageError("--lidar-cut-azimuth needs a sweeping scan: add --lidar-stamp start|end or --lidar-point-time");
   }
 }
 
@@ -131,6 +136,22 @@ std::string makeSyntheticBagUsage() {
       "  --empty-image-region R   left | centre | right: nobody is ever seen in that third of the image\n"
       "                           (people stand on the other side of the path; frames where someone\n"
       "                           would show there leave them out; no false detections there)\n"
+      "  --camera-time-offset S   the image (and mask) stamped t shows the world at t + S, |S| <= 0.5\n"
+      "                           (the time_offset_s a calibration should find; default 0)\n"
+      "  --lidar-stamp start|end  the scan sweeps over one rotation (100 ms, clockwise from behind the\n"
+      "                           vehicle: the camera's view is swept mid-rotation) and is stamped at\n"
+      "                           its first point (Ouster) or its last (the velodyne driver); points\n"
+      "                           are not motion-compensated. Default: instantaneous at the stamp\n"
+      "  --lidar-point-time       each point of /lidar/points and /lidar/human_clusters carries float32\n"
+      "                           `time` = capture time - header stamp, s (velodyne's field); implies a\n"
+      "                           sweep, stamped at its end unless --lidar-stamp says otherwise\n"
+      "  --lidar-cut-azimuth DEG  where a sweep starts and ends, counter-clockwise from straight ahead\n"
+      "                           (default 180: behind; 0 cuts the camera's view in two)\n"
+      "  --speed-profile P        steady (default: one speed, the drive as it always was) | field (stops,\n"
+      "                           speed changes 0-1.2x the rig's speed, a meandering path and eased\n"
+      "                           turns, also while people are in view)\n"
+      "  --walking-fraction F     share of people walking back and forth (default 0.35); steady with 0\n"
+      "                           is the drive whose timing cannot be told from the translation\n"
       "  --help                   this text\n"
       "Exit codes: 0 success, 1 failure while writing, 2 bad arguments.\n";
 }
@@ -138,7 +159,7 @@ std::string makeSyntheticBagUsage() {
 MakeSyntheticBagOptions parseMakeSyntheticBagOptions(const std::vector<std::string>& args) {
   MakeSyntheticBagOptions o;
   const double frame_rate_hz = syn::SyntheticConfig{}.frame_rate_hz;
-  bool frames_set = false, duration_set = false, change_given = false;
+  bool frames_set = false, duration_set = false, change_given = false, cut_given = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&]() -> const std::string& {
@@ -202,12 +223,25 @@ MakeSyntheticBagOptions parseMakeSyntheticBagOptions(const std::vector<std::stri
       change_given = true;
     } else if (a == "--empty-image-region") {
       o.empty_image_region = oneOf(a, value(), {"left", "centre", "right"});
+    } else if (a == "--camera-time-offset") {
+      o.camera_time_offset_s = parseDouble(a, value(), -0.5, 0.5);
+    } else if (a == "--lidar-point-time") {
+      o.lidar_point_time = true;
+    } else if (a == "--lidar-stamp") {
+      o.lidar_stamp = oneOf(a, value(), {"start", "end"});
+    } else if (a == "--lidar-cut-azimuth") {
+      o.lidar_cut_azimuth_deg = parseDouble(a, value(), -360.0, 360.0);
+      cut_given = true;
+    } else if (a == "--speed-profile") {
+      o.speed_profile = oneOf(a, value(), {"steady", "field"});
+    } else if (a == "--walking-fraction") {
+      o.walking_fraction = parseDouble(a, value(), 0.0, 1.0);
     } else {
       throw UsageError("unknown argument '" + a + "' (see --help)");
     }
   }
   if (frames_set && duration_set) throw UsageError("give either --frames or --duration, not both");
-  finish(o, change_given, frame_rate_hz);
+  finish(o, change_given, cut_given, frame_rate_hz);
   return o;
 }
 
@@ -232,6 +266,12 @@ syn::SyntheticConfig syntheticConfigFrom(const MakeSyntheticBagOptions& o) {
   c.extrinsic_change.rotation_deg = o.extrinsic_change_rotation_deg;
   c.extrinsic_change.translation_cm = o.extrinsic_change_translation_cm;
   c.empty_image_region = syn::imageRegionByName(o.empty_image_region);
+  c.timing.camera_time_offset_s = o.camera_time_offset_s;
+  c.timing.lidar_stamp = syn::lidarStampByName(o.lidar_stamp);
+  c.timing.lidar_point_time = o.lidar_point_time;
+  c.timing.lidar_cut_azimuth_rad = o.lidar_cut_azimuth_deg * M_PI / 180.0;
+  c.scene.speed_profile = syn::speedProfileByName(o.speed_profile);
+  if (o.walking_fraction >= 0.0) c.scene.walking_fraction = o.walking_fraction;
   return c;
 }
 

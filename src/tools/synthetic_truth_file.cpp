@@ -4,6 +4,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <fstream>
 #include <stdexcept>
 
@@ -28,6 +29,36 @@ void emitChange(YAML::Emitter& out, const synthetic::ExtrinsicChange& change) {
   emitExtrinsic(out, change.after);
   out << YAML::EndMap;
   out << YAML::EndMap;
+}
+
+// Issue 21: what the sensors' clocks did. time_offset_s is the INTERFACE's delta when every LiDAR
+// point is taken at its own capture time (stamp + per-point time); a fit that takes every point
+// at its scan's stamp sees, for people near the image centre, time_offset_at_scan_stamp_s
+// instead: the offset minus when the sweep passed the camera's axis.
+void emitTiming(YAML::Emitter& out, const synthetic::SyntheticRig& rig) {
+  const synthetic::SyntheticConfig& c = rig.config();
+  const synthetic::SensorTimingConfig& timing = c.timing;
+  out << YAML::Key << "time_offset_s" << YAML::Value << timing.camera_time_offset_s;
+  out << YAML::Key << "lidar_stamp" << YAML::Value << synthetic::toString(timing.lidar_stamp);
+  out << YAML::Key << "lidar_point_time" << YAML::Value << timing.lidar_point_time;
+  // The camera's optical axis (+z of the camera) in the LiDAR frame, as an azimuth.
+  const Eigen::Vector3d axis = c.rig.truth.rotationMatrix().transpose() * Eigen::Vector3d::UnitZ();
+  const double axis_azimuth = std::atan2(axis.y(), axis.x());
+  out << YAML::Key << "camera_axis_azimuth_deg" << YAML::Value << axis_azimuth * 180.0 / M_PI;
+  double axis_time_s = 0.0;
+  if (const synthetic::LidarSweep* sweep = rig.sweep()) {
+    axis_time_s = sweep->timeFromStampAt(axis_azimuth);
+    out << YAML::Key << "lidar_sweep_period_s" << YAML::Value << timing.lidar_period_s;
+    out << YAML::Key << "lidar_sweep_direction" << YAML::Value << "clockwise";
+    out << YAML::Key << "lidar_cut_azimuth_deg" << YAML::Value << timing.lidar_cut_azimuth_rad * 180.0 / M_PI;
+    out << YAML::Key << "lidar_first_point_s" << YAML::Value << sweep->firstPointFromStamp();
+    out << YAML::Key << "lidar_last_point_s" << YAML::Value << sweep->lastPointFromStamp();
+  }
+  out << YAML::Key << "camera_axis_scan_time_s" << YAML::Value << axis_time_s;
+  out << YAML::Key << "time_offset_at_scan_stamp_s" << YAML::Value << timing.camera_time_offset_s - axis_time_s;
+  out << YAML::Key << "speed_profile" << YAML::Value << synthetic::toString(c.scene.speed_profile);
+  out << YAML::Key << "max_speed_mps" << YAML::Value << rig.scene().schedule().maxSpeed();
+  out << YAML::Key << "walking_fraction" << YAML::Value << c.scene.walking_fraction;
 }
 
 }  // namespace
@@ -63,6 +94,7 @@ void writeSyntheticTruth(const MakeSyntheticBagOptions& o, const synthetic::Synt
   out << YAML::Key << "distortion_model" << YAML::Value << "plumb_bob";
   emitVector(out, "distortion_coefficients", cam.distortion.data(), 5);
   out << YAML::Key << "bag" << YAML::Value << o.output;
+  emitTiming(out, rig);
   emitChange(out, rig.extrinsicChange());
   const synthetic::ColumnRange empty = rig.emptyColumns();
   if (empty.end > empty.begin) {

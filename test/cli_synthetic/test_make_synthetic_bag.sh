@@ -33,6 +33,17 @@ for bad in "$out --extrinsic-change-at 2" "$out --extrinsic-change 0.5,3" \
   code=$(exit_code $bad)
   check "bad arguments '$bad' exit 2 with one line" test "$code" = 2 -a "$(wc -l < "$dir/err")" = 1
 done
+# The timing and drive options (issue 21): a bad value is one line naming the flag, exit 2.
+for bad in "--camera-time-offset 0.6" "--camera-time-offset -0.51" "--camera-time-offset soon" \
+           "--lidar-stamp middle" "--lidar-stamp" "--speed-profile fast" "--walking-fraction 1.5" \
+           "--lidar-cut-azimuth 90" "--lidar-stamp end --lidar-cut-azimuth 400"; do
+  # shellcheck disable=SC2086
+  code=$(exit_code $out $bad)
+  flag="${bad%% *}"
+  [ "$bad" = "--lidar-stamp end --lidar-cut-azimuth 400" ] && flag=--lidar-cut-azimuth
+  check "bad arguments '$bad' exit 2 with one line naming $flag" \
+    test "$code" = 2 -a "$(wc -l < "$dir/err")" = 1 -a "$(grep -c -- "$flag" "$dir/err")" = 1
+done
 check "--help names the drift and region options" bash -c "'$exe' --help | grep -q -- '--extrinsic-change ROT_DEG,TRANS_CM' && '$exe' --help | grep -q -- '--empty-image-region'"
 
 check "small fieldsafe bag" "$exe" --output "$dir/a.bag" --frames 40 --seed 3 --full-cloud --camera-parent base_link
@@ -51,6 +62,14 @@ for key in lidar_frame camera_frame rotation_vector translation rotation_matrix 
   check "truth key $key" grep -q "^$key:" "$dir/a.bag.truth.yaml"
 done
 check "truth frames" grep -q "^lidar_frame: velodyne" "$dir/a.bag.truth.yaml"
+# Without timing flags: synchronised sensors, instantaneous scans, no time field, the steady drive.
+check "truth: default timing" bash -c "grep -q '^time_offset_s: 0$' '$dir/a.bag.truth.yaml' && \
+  grep -q '^lidar_stamp: instant$' '$dir/a.bag.truth.yaml' && grep -q '^speed_profile: steady$' '$dir/a.bag.truth.yaml'"
+/usr/bin/python3 -c "
+import rosbag, sys
+for _, m, _ in rosbag.Bag(sys.argv[1]).read_messages(topics=['/lidar/points', '/lidar/human_clusters']):
+    assert 'time' not in [f.name for f in m.fields]" "$dir/a.bag" >"$dir/no_time_check" 2>&1
+check "no time field without --lidar-point-time" test "$(cat "$dir/no_time_check")" = ""
 
 check "ms2, options" "$exe" --output "$dir/b.bag" --truth "$dir/b.yaml" --rig ms2 --frames 20 --noise realistic \
   --mask-style binary --image-encoding mono16 --no-camera-info --lidar-frame lidar --camera-frame cam --time-jitter-s 0.005
@@ -131,6 +150,46 @@ for _, cloud, _ in bag.read_messages(topics=["/lidar/points"]):
 assert pixel_ids and pixel_ids & point_ids, (sorted(pixel_ids), sorted(point_ids))
 PY
 check "raw bag: mono16 kelvin range, full clouds with ring and truth_id, people in them" test "$(cat "$dir/raw_check")" = ""
+
+# Issue 21: a late camera, a swept scan stamped at its end with velodyne's float32 `time`, the
+# field drive; the truth says how the clocks were.
+check "timed field bag" "$exe" --output "$dir/t.bag" --frames 40 --seed 3 --full-cloud --lidar-point-time \
+  --camera-time-offset 0.06 --speed-profile field --walking-fraction 1
+check "timed raw bag" "$exe" --output "$dir/tr.bag" --frames 10 --seed 3 --raw --lidar-point-time --lidar-stamp start
+check "swept bag without the time field" "$exe" --output "$dir/ts.bag" --frames 10 --seed 3 --full-cloud --lidar-stamp start
+/usr/bin/python3 - "$dir" >"$dir/time_check" 2>&1 <<'PY'
+import rosbag, struct, sys, yaml
+d = sys.argv[1]
+FLOAT32 = 7
+def times(msg):
+    f = {x.name: x for x in msg.fields}
+    assert f["time"].datatype == FLOAT32 and f["time"].count == 1, f["time"]
+    return [struct.unpack_from("<f", msg.data, i * msg.point_step + f["time"].offset)[0] for i in range(msg.width)]
+seen = {"/lidar/points": 0, "/lidar/human_clusters": 0}
+for topic, msg, _ in rosbag.Bag(d + "/t.bag").read_messages(topics=list(seen)):
+    names = [x.name for x in msg.fields]
+    expected = ["x", "y", "z", "label", "time"] if topic == "/lidar/human_clusters" else ["x", "y", "z", "intensity", "time"]
+    assert names == expected, (topic, names)
+    t = times(msg)
+    assert all(-0.1 <= v <= 0.0 for v in t), (topic, min(t), max(t))
+    seen[topic] += len(t)
+assert seen["/lidar/points"] > 1000 and seen["/lidar/human_clusters"] > 0, seen
+for _, msg, _ in rosbag.Bag(d + "/tr.bag").read_messages(topics=["/lidar/points"]):
+    assert [x.name for x in msg.fields] == ["x", "y", "z", "intensity", "ring", "truth_id", "time"]
+    t = times(msg)
+    assert 0.0 <= min(t) and max(t) < 0.1 and max(t) - min(t) > 0.09, (min(t), max(t))
+for _, msg, _ in rosbag.Bag(d + "/ts.bag").read_messages(topics=["/lidar/points"]):
+    assert "time" not in [x.name for x in msg.fields]
+t = yaml.safe_load(open(d + "/t.bag.truth.yaml"))
+assert t["time_offset_s"] == 0.06 and t["lidar_stamp"] == "end" and t["lidar_point_time"] is True, t
+assert t["speed_profile"] == "field" and t["walking_fraction"] == 1 and t["lidar_sweep_period_s"] == 0.1, t
+assert abs(t["camera_axis_scan_time_s"] + 0.05) < 0.002, t["camera_axis_scan_time_s"]
+assert abs(t["time_offset_at_scan_stamp_s"] - 0.06 + t["camera_axis_scan_time_s"]) < 1e-12
+s = yaml.safe_load(open(d + "/ts.bag.truth.yaml"))
+assert s["lidar_stamp"] == "start" and s["lidar_point_time"] is False, s
+PY
+check "time field on points and clusters (float32, within the sweep), truth timing keys" test "$(cat "$dir/time_check")" = ""
+check "--help names the timing options" bash -c "'$exe' --help | grep -q -- '--camera-time-offset S' && '$exe' --help | grep -q -- '--speed-profile'"
 
 "$exe" --output "$dir/c1.bag" --frames 15 --seed 5 >/dev/null 2>&1
 "$exe" --output "$dir/c2.bag" --frames 15 --seed 5 >/dev/null 2>&1

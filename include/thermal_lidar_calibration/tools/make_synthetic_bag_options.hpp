@@ -34,6 +34,13 @@ struct MakeSyntheticBagOptions {
   double extrinsic_change_rotation_deg = 0.0;
   double extrinsic_change_translation_cm = 0.0;
   std::string empty_image_region = "none";  // none | left | centre | right
+  // Issue 21: sensor timing and how the vehicle drives.
+  double camera_time_offset_s = 0.0;    // the image stamped t shows the world at t + this
+  bool lidar_point_time = false;        // a float32 `time` per point (the scan sweeps)
+  std::string lidar_stamp = "instant";  // instant | start | end (--lidar-point-time alone: end)
+  double lidar_cut_azimuth_deg = 180.0; // where a sweep starts, counter-clockwise from forward
+  std::string speed_profile = "steady"; // steady | field
+  double walking_fraction = -1.0;       // share of people walking; < 0: the scene's default
   bool help = false;
 };
 
