@@ -50,6 +50,11 @@ void checkFrame(const Frame& frame, const CameraModel& camera) {
                                 " points but " + std::to_string(frame.labels.size()) +
                                 " labels: every point needs exactly one label");
   }
+  if (!frame.point_time_s.empty() && frame.point_time_s.size() != frame.points.size()) {
+    throw std::invalid_argument("clusters have " + std::to_string(frame.points.size()) + " points but " +
+                                std::to_string(frame.point_time_s.size()) +
+                                " point times: give every point a time or none");
+  }
 }
 
 }  // namespace

@@ -98,6 +98,19 @@ TEST(DatasetBuilder, KeptFrameBuildsThePair) {
   EXPECT_EQ(builder.lidarFrame(), "velodyne");
   EXPECT_EQ(builder.counts()[GateDecision::kKept], 1u);
   EXPECT_EQ(builder.counts().nonfinite_points_dropped, 4u);
+  EXPECT_TRUE(p.point_time_s.empty());
+}
+
+// Issue 21: the clusters' per-point times and stamp reach the pair as decoded.
+TEST(DatasetBuilder, PointTimesAndTheCloudStampReachThePair) {
+  tlc::DatasetBuilder builder(camera(), gate());
+  tlc::Frame f = frame(1, 1, 4, 12.5);
+  f.cloud_stamp_s = 12.47;
+  f.point_time_s = {-0.09f, -0.06f, -0.05f, -0.01f};
+  ASSERT_EQ(builder.offer([&] { return f; }).decision, GateDecision::kKept);
+  const tlc::CalibrationPair& p = builder.pairs().back();
+  EXPECT_EQ(p.point_time_s, f.point_time_s);
+  EXPECT_DOUBLE_EQ(p.cloud_stamp_s, 12.47);
 }
 
 TEST(DatasetBuilder, ImageWrappingExternalBufferIsCopied) {
@@ -191,6 +204,10 @@ TEST(DatasetBuilder, OtherMalformedFramesAreBadMessages) {
   labels.labels.pop_back();
   expect_bad(labels, "5 points but 4 labels");
 
+  tlc::Frame times = frame(1, 1);
+  times.point_time_s = {0.0f, 0.01f};
+  expect_bad(times, "5 points but 2 point times");
+
   tlc::Frame mask_type = frame(1, 1);
   mask_type.mask = cv::Mat::zeros(kHeight, kWidth, CV_32FC1);
   expect_bad(mask_type, "mask");
@@ -205,7 +222,7 @@ TEST(DatasetBuilder, OtherMalformedFramesAreBadMessages) {
   tlc::Frame other_frames = frame(1, 1);
   other_frames.lidar_frame = "os_sensor";
   expect_bad(other_frames, "os_sensor");
-  EXPECT_EQ(builder.counts()[GateDecision::kBadMessage], 4u);
+  EXPECT_EQ(builder.counts()[GateDecision::kBadMessage], 5u);
   EXPECT_EQ(builder.pairs().size(), 1u);
 }
 
