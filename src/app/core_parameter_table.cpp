@@ -14,6 +14,8 @@
 
 #include "thermal_lidar_calibration/app/parameters.hpp"
 
+#include "thermal_lidar_calibration/app/point_time_field.hpp"
+
 #include <limits>
 
 namespace thermal_lidar_calibration {
@@ -155,6 +157,17 @@ void addDriftRows(ParameterTable<CoreParameters>& t) {
              closedRange(0, 1e5), "cm", "nor one moved further than this");
 }
 
+// Issue 21: when the LiDAR points were captured.
+void addTimingRows(ParameterTable<CoreParameters>& t) {
+  auto top = t.fields();
+  t.section("Sensor timing (beyond the paper; issue #21)");
+  top.text("point_time_field", &CoreParameters::point_time_field,
+           TextRule::required("must be auto, none or the name of a PointCloud2 field"),
+           "the clusters' per-point capture time: auto (the first of time, t, timestamp, offset_time the "
+           "cloud has; none of them: no per-point times), none (ignore them) or a field name; float32/64 "
+           "seconds, relative to the header stamp or absolute, or (u)int32 nanoseconds relative to it");
+}
+
 ParameterTable<CoreParameters> makeCoreParameterTable() {
   ParameterTable<CoreParameters> t;
   auto top = t.fields();
@@ -257,6 +270,7 @@ ParameterTable<CoreParameters> makeCoreParameterTable() {
   addQualityRows(t);
   addTimingRows(t);
   addDriftRows(t);
+  addTimingRows(t);
   return t;
 }
 
@@ -276,6 +290,11 @@ CoreParameters loadCoreParameters(const ParameterSource& source) {
   p.quality.validate();
   p.motion.validate();
   p.drift.validate();
+  try {
+    PointTimeField::parse(p.point_time_field);
+  } catch (const std::invalid_argument& e) {
+    throwBadParameter(source, "point_time_field", e.what());
+  }
   return p;
 }
 

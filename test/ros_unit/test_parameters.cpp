@@ -2,6 +2,7 @@
 
 #include "thermal_lidar_calibration/app/detection_parameters.hpp"
 #include "thermal_lidar_calibration/app/parameters.hpp"
+#include "thermal_lidar_calibration/app/point_time_field.hpp"
 #include "thermal_lidar_calibration/node/node_parameters.hpp"
 #include "thermal_lidar_calibration/app/unknown_parameters.hpp"
 #include "thermal_lidar_calibration/node/parameter_catalog.hpp"
@@ -127,6 +128,24 @@ TEST(Parameters, BadValuesNameKeyValueAndRange) {
             std::string::npos);
 }
 
+// Issue 21: which field holds the clusters' per-point times.
+TEST(Parameters, PointTimeFieldIsAutoNoneOrAFieldName) {
+  EXPECT_EQ(loadText("seed: 1\n").point_time_field, "auto");
+  EXPECT_EQ(loadText("point_time_field: none\n").point_time_field, "none");
+  EXPECT_EQ(loadText("point_time_field: offset_time\n").point_time_field, "offset_time");
+  EXPECT_EQ(loadText("point_time_field: t\n").point_time_field, "t");
+  EXPECT_EQ(errorOf("point_time_field: \"time stamp\"\n"),
+            "parameter 'point_time_field' = 'time stamp': must be auto, none or the name of a PointCloud2 "
+            "field (letters, digits, _)");
+  EXPECT_EQ(errorOf("point_time_field: \"\"\n"),
+            "parameter 'point_time_field' = '': must be auto, none or the name of a PointCloud2 field");
+  const tlc::PointTimeField named = tlc::PointTimeField::parse("timestamp");
+  EXPECT_EQ(named.mode, tlc::PointTimeField::Mode::kNamed);
+  EXPECT_EQ(named.name, "timestamp");
+  EXPECT_EQ(tlc::PointTimeField::parse("auto").mode, tlc::PointTimeField::Mode::kAuto);
+  EXPECT_EQ(tlc::PointTimeField::parse("none").mode, tlc::PointTimeField::Mode::kNone);
+}
+
 TEST(Parameters, BadFiles) {
   EXPECT_THROW(makeYamlParameterSource("/nonexistent/params.yaml"), std::invalid_argument);
   EXPECT_THROW(makeYamlParameterSource(yamlFile("a: [1,\n")), std::invalid_argument);
@@ -170,7 +189,8 @@ TEST(Parameters, QualityThresholdsAreValidatedAcrossKeys) {
 
 TEST(Parameters, DescribeListsEveryCoreKeyOnce) {
   const auto described = describeCoreParameters(CoreParameters{});
-  EXPECT_EQ(described.size(), 67u);  // 34 of the method and gating, 17 quality (issue 8), 16 drift (9)
+  EXPECT_EQ(described.size(), 68u);  // 34 of the method and gating, 17 quality (issue 8), 16 drift (9),
+                                     // 1 timing (21)
   for (const auto& kv : described) {
     const auto& known = knownParameterKeys();
     EXPECT_NE(std::find(known.begin(), known.end(), kv.first), known.end()) << kv.first;

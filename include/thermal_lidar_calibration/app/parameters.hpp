@@ -26,6 +26,8 @@ struct CoreParameters {
   QualityConfig quality;       // uncertainty, coverage and verdict after a fit (issue 8)
   MotionConfig motion;         // people's motion from neighbouring scans (issue 21)
   DriftConfig drift;           // the drift watch (issue 9): calibrate_bag --monitor, node monitor
+  // Issue 21: the clusters' per-point time field: auto, none or a field name (PointTimeField).
+  std::string point_time_field = "auto";
 };
 
 const ParameterTable<CoreParameters>& coreParameterTable();
