@@ -4,6 +4,8 @@
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 #include "thermal_lidar_calibration/app/camera_calibration.hpp"
 
+#include "cloud_fields.hpp"
+
 #include <sensor_msgs/image_encodings.h>
 
 #include <algorithm>
@@ -20,169 +22,16 @@ namespace thermal_lidar_calibration {
 namespace ros_io {
 namespace {
 
+using cloud_fields::CloudLayout;
+using cloud_fields::checkCloudLayout;
+using cloud_fields::checkedMul;
+using cloud_fields::fail;
+using cloud_fields::pointAt;
+using cloud_fields::readScalar;
+
 // No thermal camera comes near this; a larger declared size is a corrupt header, refused before
 // cv::Mat's int dimensions or an allocation see it.
 constexpr std::uint32_t kMaxImageSide = 1u << 15;
-
-std::string topicPrefix(const std::string& topic) {
-  return topic.empty() ? std::string() : topic + ": ";
-}
-
-[[noreturn]] void fail(const std::string& topic, const std::string& what) {
-  throw std::invalid_argument(topicPrefix(topic) + what);
-}
-
-const char* datatypeName(std::uint8_t datatype) {
-  switch (datatype) {
-    case sensor_msgs::PointField::INT8: return "int8";
-    case sensor_msgs::PointField::UINT8: return "uint8";
-    case sensor_msgs::PointField::INT16: return "int16";
-    case sensor_msgs::PointField::UINT16: return "uint16";
-    case sensor_msgs::PointField::INT32: return "int32";
-    case sensor_msgs::PointField::UINT32: return "uint32";
-    case sensor_msgs::PointField::FLOAT32: return "float32";
-    case sensor_msgs::PointField::FLOAT64: return "float64";
-    default: return "unknown";
-  }
-}
-
-std::size_t datatypeSize(std::uint8_t datatype) {
-  switch (datatype) {
-    case sensor_msgs::PointField::INT8:
-    case sensor_msgs::PointField::UINT8: return 1;
-    case sensor_msgs::PointField::INT16:
-    case sensor_msgs::PointField::UINT16: return 2;
-    case sensor_msgs::PointField::INT32:
-    case sensor_msgs::PointField::UINT32:
-    case sensor_msgs::PointField::FLOAT32: return 4;
-    case sensor_msgs::PointField::FLOAT64: return 8;
-    default: return 0;
-  }
-}
-
-// Reads one scalar of `datatype` at `p` (little-endian host assumed, as checked by the caller).
-double readScalar(const std::uint8_t* p, std::uint8_t datatype) {
-  switch (datatype) {
-    case sensor_msgs::PointField::INT8: { std::int8_t v; std::memcpy(&v, p, 1); return v; }
-    case sensor_msgs::PointField::UINT8: return *p;
-    case sensor_msgs::PointField::INT16: { std::int16_t v; std::memcpy(&v, p, 2); return v; }
-    case sensor_msgs::PointField::UINT16: { std::uint16_t v; std::memcpy(&v, p, 2); return v; }
-    case sensor_msgs::PointField::INT32: { std::int32_t v; std::memcpy(&v, p, 4); return v; }
-    case sensor_msgs::PointField::UINT32: { std::uint32_t v; std::memcpy(&v, p, 4); return v; }
-    case sensor_msgs::PointField::FLOAT32: { float v; std::memcpy(&v, p, 4); return v; }
-    case sensor_msgs::PointField::FLOAT64: { double v; std::memcpy(&v, p, 8); return v; }
-    default: return std::numeric_limits<double>::quiet_NaN();
-  }
-}
-
-std::string fieldList(const sensor_msgs::PointCloud2& msg) {
-  if (msg.fields.empty()) return "none";
-  std::string out;
-  for (const auto& f : msg.fields) out += (out.empty() ? "" : ", ") + f.name;
-  return out;
-}
-
-const sensor_msgs::PointField* findField(const sensor_msgs::PointCloud2& msg,
-                                         const std::string& name) {
-  for (const auto& f : msg.fields) {
-    if (f.name == name) return &f;
-  }
-  return nullptr;
-}
-
-// a * b, or nullopt when it does not fit in size_t: declared sizes come from the wire.
-std::optional<std::size_t> checkedMul(std::size_t a, std::size_t b) {
-  std::size_t out = 0;
-  if (__builtin_mul_overflow(a, b, &out)) return std::nullopt;
-  return out;
-}
-
-void checkFieldFits(const sensor_msgs::PointCloud2& msg, const sensor_msgs::PointField& f,
-                    const std::string& topic) {
-  const std::size_t size = datatypeSize(f.datatype);
-  if (size == 0) {
-    fail(topic, "PointCloud2 field '" + f.name + "' has unknown datatype " +
-                    std::to_string(f.datatype) + "; use a sensor_msgs/PointField datatype");
-  }
-  if (static_cast<std::size_t>(f.offset) + size > msg.point_step) {
-    fail(topic, "PointCloud2 field '" + f.name + "' (offset " + std::to_string(f.offset) +
-                    ", " + datatypeName(f.datatype) + ") lies outside point_step " +
-                    std::to_string(msg.point_step) + "; fix the publisher's field layout");
-  }
-}
-
-// A PointCloud2 whose layout was checked: x, y, z (float32 or float64) and, when asked for,
-// `label`, every field inside point_step, and row_step and data large enough for
-// width x height points, every size computed without overflow. The one check every cloud
-// decoder (clusters of the ingest path, ~overlay_cloud) goes through.
-struct CloudLayout {
-  const sensor_msgs::PointField* axes[3] = {nullptr, nullptr, nullptr};
-  const sensor_msgs::PointField* label = nullptr;
-  std::size_t points = 0;  // width * height
-};
-
-CloudLayout checkCloudLayout(const sensor_msgs::PointCloud2& msg, const std::string& topic,
-                             bool need_label) {
-  if (msg.is_bigendian) {
-    fail(topic, "PointCloud2 is big-endian; publish little-endian data (is_bigendian = false)");
-  }
-  CloudLayout layout;
-  const char* axis_names[3] = {"x", "y", "z"};
-  for (int k = 0; k < 3; ++k) {
-    layout.axes[k] = findField(msg, axis_names[k]);
-    if (!layout.axes[k]) {
-      fail(topic, std::string("PointCloud2 has no '") + axis_names[k] + "' field (fields: " +
-                      fieldList(msg) + "); publish float32 x, y, z");
-    }
-    if (layout.axes[k]->datatype != sensor_msgs::PointField::FLOAT32 &&
-        layout.axes[k]->datatype != sensor_msgs::PointField::FLOAT64) {
-      fail(topic, std::string("PointCloud2 field '") + axis_names[k] + "' is " +
-                      datatypeName(layout.axes[k]->datatype) + "; publish float32 x, y, z");
-    }
-    checkFieldFits(msg, *layout.axes[k], topic);
-  }
-  if (need_label) {
-    layout.label = findField(msg, "label");
-    if (!layout.label) {
-      fail(topic, "PointCloud2 has no 'label' field (fields: " + fieldList(msg) +
-                      "); publish one integer label per person");
-    }
-    if (layout.label->datatype == sensor_msgs::PointField::FLOAT64 ||
-        datatypeSize(layout.label->datatype) == 0) {
-      fail(topic, std::string("PointCloud2 field 'label' is ") +
-                      datatypeName(layout.label->datatype) +
-                      "; publish it as an integer (int8..int32, uint8..uint32) or float32");
-    }
-    checkFieldFits(msg, *layout.label, topic);
-  }
-  const auto points = checkedMul(msg.width, msg.height);
-  const auto row_bytes = checkedMul(msg.width, msg.point_step);
-  if (!points || !row_bytes) {
-    fail(topic, "PointCloud2 declares " + std::to_string(msg.width) + " x " +
-                    std::to_string(msg.height) + " points of " + std::to_string(msg.point_step) +
-                    " bytes, more than memory can hold; fix the publisher's layout");
-  }
-  layout.points = *points;
-  if (layout.points == 0) return layout;
-  if (*row_bytes > msg.row_step) {
-    fail(topic, "PointCloud2 row_step " + std::to_string(msg.row_step) +
-                    " is smaller than width * point_step = " + std::to_string(*row_bytes) +
-                    "; fix the publisher's layout");
-  }
-  const auto needed = checkedMul(msg.row_step, msg.height);
-  if (!needed || msg.data.size() < *needed) {
-    fail(topic, "PointCloud2 data has " + std::to_string(msg.data.size()) +
-                    " bytes, expected row_step * height = " + std::to_string(msg.row_step) +
-                    " * " + std::to_string(msg.height) + "; the message is truncated");
-  }
-  return layout;
-}
-
-// The bytes of point `index` (row-major; rows may be padded to row_step). The layout is checked.
-const std::uint8_t* pointAt(const sensor_msgs::PointCloud2& msg, std::size_t index) {
-  const std::size_t row = index / msg.width, col = index % msg.width;
-  return msg.data.data() + row * msg.row_step + col * msg.point_step;
-}
 
 }  // namespace
 
