@@ -159,7 +159,8 @@ void CalibrationNode::onFrame(const sensor_msgs::Image::ConstPtr& image,
   }
   const std::uint64_t nonfinite_before = builder_->counts().nonfinite_points_dropped;
   const OfferOutcome outcome = builder_->offer([&] {
-    return decodeFrame(*image, *mask, *clusters, image_topic_, mask_topic_, clusters_topic_);
+    return decodeFrame(*image, *mask, *clusters, image_topic_, mask_topic_, clusters_topic_,
+                       PointTimeField::parse(params_.core.point_time_field));
   });
   const std::uint64_t nonfinite = builder_->counts().nonfinite_points_dropped - nonfinite_before;
   if (nonfinite > 0) {

@@ -181,12 +181,13 @@ BagIngestStats ingestBag(rosbag::Bag& bag, const BagTopics& topics, const CorePa
     const std::string line = reporter.reportAtStamp(stamp_s, "", error);
     if (!line.empty() && callbacks.warn) callbacks.warn(line);
   };
+  const PointTimeField time_field = PointTimeField::parse(params.point_time_field);
   const auto on_frame = [&](const sensor_msgs::Image::ConstPtr& image,
                             const sensor_msgs::Image::ConstPtr& mask,
                             const sensor_msgs::PointCloud2::ConstPtr& clusters) {
     ++stats.frames;
     const OfferOutcome outcome = builder.offer([&] {
-      return decodeFrame(*image, *mask, *clusters, topics.image, topics.mask, topics.clusters);
+      return decodeFrame(*image, *mask, *clusters, topics.image, topics.mask, topics.clusters, time_field);
     });
     if (outcome.decision != GateDecision::kBadMessage) return;
     report_bad(image->header.stamp.toSec(),

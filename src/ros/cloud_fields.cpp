@@ -143,6 +143,51 @@ CloudLayout checkCloudLayout(const sensor_msgs::PointCloud2& msg, const std::str
   return layout;
 }
 
+const sensor_msgs::PointField* pointTimeField(const sensor_msgs::PointCloud2& msg, const PointTimeField& setting,
+                                              const std::string& topic) {
+  const sensor_msgs::PointField* field = nullptr;
+  switch (setting.mode) {
+    case PointTimeField::Mode::kNone: return nullptr;
+    case PointTimeField::Mode::kAuto:
+      for (const std::string& name : PointTimeField::autoNames()) {
+        if ((field = findField(msg, name))) break;
+      }
+      if (!field) return nullptr;
+      break;
+    case PointTimeField::Mode::kNamed:
+      field = findField(msg, setting.name);
+      if (!field) {
+        fail(topic, "PointCloud2 has no point time field '" + setting.name + "' (fields: " + fieldList(msg) +
+                        "); set point_time_field to one of them, auto or none");
+      }
+      break;
+  }
+  const std::uint8_t t = field->datatype;
+  if (t != sensor_msgs::PointField::FLOAT32 && t != sensor_msgs::PointField::FLOAT64 &&
+      t != sensor_msgs::PointField::INT32 && t != sensor_msgs::PointField::UINT32) {
+    fail(topic, "PointCloud2 point time field '" + field->name + "' is " + datatypeName(t) +
+                    "; times must be float32/float64 seconds or int32/uint32 nanoseconds "
+                    "(point_time_field: none ignores them)");
+  }
+  checkFieldFits(msg, *field, topic);
+  return field;
+}
+
+PointTimeReader::PointTimeReader(const sensor_msgs::PointField& field, double stamp_s)
+    : offset_(field.offset),
+      datatype_(field.datatype),
+      nanoseconds_(field.datatype == sensor_msgs::PointField::INT32 ||
+                   field.datatype == sensor_msgs::PointField::UINT32),
+      stamp_s_(stamp_s) {}
+
+double PointTimeReader::secondsFromStamp(const std::uint8_t* point) {
+  const double raw = readScalar(point + offset_, datatype_);
+  if (nanoseconds_) return raw * 1e-9;
+  if (!std::isfinite(raw)) return std::numeric_limits<double>::quiet_NaN();
+  if (absolute_ < 0) absolute_ = std::abs(raw - stamp_s_) < std::abs(raw) ? 1 : 0;
+  return absolute_ ? raw - stamp_s_ : raw;
+}
+
 }  // namespace cloud_fields
 }  // namespace ros_io
 }  // namespace thermal_lidar_calibration

@@ -4,6 +4,8 @@
 // declared points, no overflow) before any point is read. Failures throw std::invalid_argument
 // with one line naming the topic, what was wrong and what to do.
 
+#include "thermal_lidar_calibration/app/point_time_field.hpp"
+
 #include <sensor_msgs/PointCloud2.h>
 
 #include <cstddef>
@@ -50,6 +52,32 @@ inline const std::uint8_t* pointAt(const sensor_msgs::PointCloud2& msg, std::siz
   const std::size_t row = index / msg.width, col = index % msg.width;
   return msg.data.data() + row * msg.row_step + col * msg.point_step;
 }
+
+// The per-point time field `setting` selects in `msg` (checked to fit), or nullptr: none, or
+// auto and none of its names present. A named field that is missing, or a chosen field that
+// cannot hold times (anything but float32/64 or int32/uint32), fails.
+const sensor_msgs::PointField* pointTimeField(const sensor_msgs::PointCloud2& msg, const PointTimeField& setting,
+                                              const std::string& topic);
+
+// A point's capture time in seconds from the cloud's header stamp, from its time field. The type
+// gives the unit: float32/float64 seconds, int32/uint32 nanoseconds (32 bits of nanoseconds span
+// 4.3 s, so they can only be relative: ouster's t, livox's offset_time). Seconds are absolute
+// (hesai's timestamp) or relative (velodyne's time): decided once per cloud from its first
+// finite time, absolute when it lies nearer the header stamp than zero. (A cloud stamped within
+// a sweep of its clock's zero, e.g. the first 0.1 s of a simulation, is read as relative.)
+class PointTimeReader {
+ public:
+  PointTimeReader(const sensor_msgs::PointField& field, double stamp_s);
+  // NaN when the stored time is not finite.
+  double secondsFromStamp(const std::uint8_t* point);
+
+ private:
+  std::uint32_t offset_;
+  std::uint8_t datatype_;
+  bool nanoseconds_;
+  double stamp_s_;
+  int absolute_ = -1;  // -1 until the first finite time decides
+};
 
 }  // namespace cloud_fields
 }  // namespace ros_io

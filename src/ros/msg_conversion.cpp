@@ -82,18 +82,25 @@ cv::Mat decodeMonoImage(const sensor_msgs::Image& msg, const std::string& topic)
   return out;
 }
 
-DecodedClusters decodeClusters(const sensor_msgs::PointCloud2& msg, const std::string& topic) {
+DecodedClusters decodeClusters(const sensor_msgs::PointCloud2& msg, const std::string& topic,
+                               const PointTimeField& time_field) {
   const CloudLayout layout = checkCloudLayout(msg, topic, /*need_label=*/true);
+  const sensor_msgs::PointField* time = cloud_fields::pointTimeField(msg, time_field, topic);
+  std::optional<cloud_fields::PointTimeReader> times;
+  if (time) times.emplace(*time, msg.header.stamp.toSec());
   DecodedClusters out;
   out.points.reserve(layout.points);  // bounded: the data holds every point (checked)
   out.labels.reserve(layout.points);
+  if (times) out.point_time_s.reserve(layout.points);
   for (std::size_t i = 0; i < layout.points; ++i) {
     const std::uint8_t* p = pointAt(msg, i);
     const double x = readScalar(p + layout.axes[0]->offset, layout.axes[0]->datatype);
     const double y = readScalar(p + layout.axes[1]->offset, layout.axes[1]->datatype);
     const double z = readScalar(p + layout.axes[2]->offset, layout.axes[2]->datatype);
     const double l = readScalar(p + layout.label->offset, layout.label->datatype);
-    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) || !std::isfinite(l)) {
+    // A point without a usable time goes with its time: points and times stay aligned.
+    const double t = times ? times->secondsFromStamp(p) : 0.0;
+    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) || !std::isfinite(l) || !std::isfinite(t)) {
       ++out.nonfinite_dropped;
       continue;
     }
@@ -111,6 +118,27 @@ DecodedClusters decodeClusters(const sensor_msgs::PointCloud2& msg, const std::s
     }
     out.points.emplace_back(xf, yf, zf);
     out.labels.push_back(static_cast<std::int32_t>(l));
+    if (times) out.point_time_s.push_back(static_cast<float>(t));
+  }
+  return out;
+}
+
+DecodedCloud decodeCloud(const sensor_msgs::PointCloud2& msg, const std::string& topic) {
+  const CloudLayout layout = checkCloudLayout(msg, topic, /*need_label=*/false);
+  if (layout.points > std::numeric_limits<std::uint32_t>::max()) {
+    fail(topic, "PointCloud2 has " + std::to_string(layout.points) + " points, more than a scan can; fix the publisher");
+  }
+  DecodedCloud out;
+  out.points.reserve(layout.points);
+  out.source_index.reserve(layout.points);
+  for (std::size_t i = 0; i < layout.points; ++i) {
+    const std::uint8_t* p = pointAt(msg, i);
+    const float x = static_cast<float>(readScalar(p + layout.axes[0]->offset, layout.axes[0]->datatype));
+    const float y = static_cast<float>(readScalar(p + layout.axes[1]->offset, layout.axes[1]->datatype));
+    const float z = static_cast<float>(readScalar(p + layout.axes[2]->offset, layout.axes[2]->datatype));
+    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) continue;
+    out.points.emplace_back(x, y, z);
+    out.source_index.push_back(static_cast<std::uint32_t>(i));
   }
   return out;
 }
@@ -159,7 +187,8 @@ ScanPeople decodeScanPeople(const sensor_msgs::PointCloud2& msg, const std::stri
 
 Frame decodeFrame(const sensor_msgs::Image& image, const sensor_msgs::Image& mask,
                   const sensor_msgs::PointCloud2& clusters, const std::string& image_topic,
-                  const std::string& mask_topic, const std::string& clusters_topic) {
+                  const std::string& mask_topic, const std::string& clusters_topic,
+                  const PointTimeField& time_field) {
   Frame frame;
   frame.stamp_s = image.header.stamp.toSec();
   frame.camera_frame =
@@ -175,9 +204,11 @@ Frame decodeFrame(const sensor_msgs::Image& image, const sensor_msgs::Image& mas
                          std::to_string(frame.image.rows) +
                          "; segment the same image the camera publishes");
   }
-  DecodedClusters decoded = decodeClusters(clusters, clusters_topic);
+  DecodedClusters decoded = decodeClusters(clusters, clusters_topic, time_field);
   frame.points = std::move(decoded.points);
   frame.labels = std::move(decoded.labels);
+  frame.point_time_s = std::move(decoded.point_time_s);
+  frame.cloud_stamp_s = clusters.header.stamp.toSec();
   frame.nonfinite_points_dropped = decoded.nonfinite_dropped;
   return frame;
 }

@@ -2,6 +2,7 @@
 // Pure conversions between ROS messages and core types. Every decode failure throws
 // std::invalid_argument with one line saying what was wrong and what to do.
 
+#include "thermal_lidar_calibration/app/point_time_field.hpp"
 #include "thermal_lidar_calibration/core/calibration_pair.hpp"
 #include "thermal_lidar_calibration/core/camera_model.hpp"
 
@@ -20,10 +21,26 @@ cv::Mat decodeMonoImage(const sensor_msgs::Image& msg, const std::string& topic)
 struct DecodedClusters {
   std::vector<Eigen::Vector3f> points;  // finite points only
   std::vector<std::int32_t> labels;
-  std::size_t nonfinite_dropped = 0;
+  // Per point, seconds from the header stamp; empty when `time_field` selects no field.
+  std::vector<float> point_time_s;
+  std::size_t nonfinite_dropped = 0;    // points with a NaN/inf coordinate, label or time
 };
-// float32 x, y, z plus an integer (any int/uint width) or float `label` field.
-DecodedClusters decodeClusters(const sensor_msgs::PointCloud2& msg, const std::string& topic);
+// float32 x, y, z plus an integer (any int/uint width) or float `label` field, and the per-point
+// capture times of the field `time_field` selects (issue 21). The field's type gives the unit:
+// float32/float64 are seconds, relative to the header stamp (velodyne's `time`) or absolute
+// (hesai's `timestamp`); int32/uint32 are nanoseconds relative to the stamp (ouster's `t`,
+// livox's `offset_time`). A named field that is missing, or a chosen field of another type, is
+// an error; auto finding none of its names is no per-point times.
+DecodedClusters decodeClusters(const sensor_msgs::PointCloud2& msg, const std::string& topic,
+                               const PointTimeField& time_field = {});
+
+// Every finite point of a cloud with its index in the message (a raw scan for the person
+// detector, whose output keeps each point's other fields: PersonDetectionAdapter).
+struct DecodedCloud {
+  std::vector<Eigen::Vector3f> points;
+  std::vector<std::uint32_t> source_index;
+};
+DecodedCloud decodeCloud(const sensor_msgs::PointCloud2& msg, const std::string& topic);
 
 // The clusters as one centroid per person (issue 21: the scans around a kept pair measure its
 // people's motion). Throws std::invalid_argument as decodeClusters does.
@@ -44,10 +61,12 @@ sensor_msgs::CameraInfo cameraInfoFromModel(const CameraModel& camera);
 // write them; tf2 rejects such ids, and "/velodyne" and "velodyne" are one sensor).
 std::string tfFrameId(const std::string& frame_id);
 
-// One synchronized candidate: image, mask and clusters decoded into a core Frame.
+// One synchronized candidate: image, mask and clusters decoded into a core Frame, with the
+// clusters' stamp and the per-point times `time_field` selects.
 Frame decodeFrame(const sensor_msgs::Image& image, const sensor_msgs::Image& mask,
                   const sensor_msgs::PointCloud2& clusters, const std::string& image_topic,
-                  const std::string& mask_topic, const std::string& clusters_topic);
+                  const std::string& mask_topic, const std::string& clusters_topic,
+                  const PointTimeField& time_field = {});
 
 // Encoders, for the generator and dataset bags.
 sensor_msgs::Image encodeMonoImage(const cv::Mat& mat, const std::string& frame_id, double stamp_s);
