@@ -14,8 +14,12 @@
 #include <gtest/gtest.h>
 #include <sensor_msgs/point_cloud2_iterator.h>
 
+#include <cmath>
+#include <limits>
 #include <set>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace tlc = thermal_lidar_calibration;
 using tlc::ros_io::PersonDetectionAdapter;
@@ -99,8 +103,8 @@ TEST(PersonDetectionAdapter, UnreadableImageNamesTheTopic) {
   }
 }
 
-// Two people on flat ground and a post: the clusters carry the cloud's header, float32 x, y, z
-// and a uint32 label per person.
+// Two people on flat ground and a post: the clusters carry the cloud's header, float32 x, y, z,
+// a uint32 label per person, and the scan's other fields.
 TEST(PersonDetectionAdapter, ClustersHaveTheCloudsHeaderAndUint32Labels) {
   const ts::Terrain flat = ts::Terrain::flat();
   const ts::CraftedScan scan = ts::castScan(
@@ -114,9 +118,10 @@ TEST(PersonDetectionAdapter, ClustersHaveTheCloudsHeaderAndUint32Labels) {
   ASSERT_TRUE(out.clusters);
   EXPECT_EQ(out.clusters->header.stamp, cloud.header.stamp);
   EXPECT_EQ(out.clusters->header.frame_id, "/velodyne");  // same header; ingest strips the '/'
-  ASSERT_EQ(out.clusters->fields.size(), 4u);
+  ASSERT_EQ(out.clusters->fields.size(), 5u);
   EXPECT_EQ(out.clusters->fields[3].name, "label");
   EXPECT_EQ(out.clusters->fields[3].datatype, sensor_msgs::PointField::UINT32);
+  EXPECT_EQ(out.clusters->fields[4].name, "intensity");
   EXPECT_EQ(out.detection.people.size(), 2u);
   std::set<std::uint32_t> labels;
   sensor_msgs::PointCloud2ConstIterator<std::uint32_t> label(*out.clusters, "label");
@@ -125,6 +130,53 @@ TEST(PersonDetectionAdapter, ClustersHaveTheCloudsHeaderAndUint32Labels) {
   // What the ingest path reads from it: the same points and two people.
   const tlc::ros_io::DecodedClusters decoded = tlc::ros_io::decodeClusters(*out.clusters, "c");
   EXPECT_EQ(decoded.points.size(), out.detection.points.size());
+}
+
+// Issue 21: a raw scan with per-point times (velodyne's float32 `time`, and NaN returns as an
+// organised driver writes them): every cluster point keeps its own point's time, so the ingest
+// path reads the person points' times from the detector's clusters.
+TEST(PersonDetectionAdapter, ClusterPointsKeepTheirPointsTimesAndOtherFields) {
+  const ts::Terrain flat = ts::Terrain::flat();
+  const ts::CraftedScan scan = ts::castScan(tlc::synthetic::LidarModel::hdl32e(), flat, ts::Mount{},
+                                            {ts::personAt(flat, 8.0, 1.0, 1), ts::personAt(flat, 12.0, -3.0, 2)}, 0.0, 1);
+  sensor_msgs::PointCloud2 cloud;
+  cloud.header.stamp = ros::Time(1600000001.5);
+  cloud.header.frame_id = "velodyne";
+  sensor_msgs::PointCloud2Modifier modifier(cloud);
+  modifier.setPointCloud2Fields(5, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1, sensor_msgs::PointField::FLOAT32,
+                                "z", 1, sensor_msgs::PointField::FLOAT32, "ring", 1, sensor_msgs::PointField::UINT16,
+                                "time", 1, sensor_msgs::PointField::FLOAT32);
+  // Every third point a NaN return: the detector's indices skip them, the copy must not.
+  const std::size_t n = scan.points.size() + scan.points.size() / 3;
+  modifier.resize(n);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  auto timeOf = [](const Eigen::Vector3f& p) { return -0.1f + 0.1f * (std::atan2(p.y(), p.x()) + 3.2f) / 6.4f; };
+  sensor_msgs::PointCloud2Iterator<float> x(cloud, "x"), y(cloud, "y"), z(cloud, "z"), t(cloud, "time");
+  sensor_msgs::PointCloud2Iterator<std::uint16_t> ring(cloud, "ring");
+  for (std::size_t i = 0, k = 0; i < n; ++i, ++x, ++y, ++z, ++t, ++ring) {
+    const bool hole = i % 4 == 3 || k >= scan.points.size();
+    const Eigen::Vector3f p = hole ? Eigen::Vector3f(nan, nan, nan) : scan.points[k];
+    *x = p.x();
+    *y = p.y();
+    *z = p.z();
+    *t = hole ? -1.0f : timeOf(p);
+    *ring = hole ? 0 : scan.ring[k];
+    if (!hole) ++k;
+  }
+  PersonDetectionAdapter adapter(tlc::DetectionParameters{});
+  const tlc::ros_io::DetectedCloud out = adapter.detect(cloud, "/lidar/points");
+  ASSERT_EQ(out.detection.people.size(), 2u);
+  std::vector<std::string> names;
+  for (const auto& f : out.clusters->fields) names.push_back(f.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"x", "y", "z", "label", "ring", "time"}));
+  const tlc::ros_io::DecodedClusters decoded = tlc::ros_io::decodeClusters(*out.clusters, "/lidar/human_clusters");
+  ASSERT_EQ(decoded.point_time_s.size(), out.detection.points.size());
+  ASSERT_GT(decoded.points.size(), 20u);
+  for (std::size_t i = 0; i < decoded.points.size(); ++i) {
+    EXPECT_FLOAT_EQ(decoded.point_time_s[i], timeOf(decoded.points[i])) << i;
+  }
+  sensor_msgs::PointCloud2ConstIterator<std::uint16_t> out_ring(*out.clusters, "ring");
+  for (std::size_t i = 0; i < out.clusters->width; ++i, ++out_ring) EXPECT_LT(*out_ring, 32u);
 }
 
 TEST(PersonDetectionAdapter, CloudWithoutXYZNamesTheTopic) {

@@ -27,7 +27,9 @@ struct SegmentedImage {
 };
 
 struct DetectedCloud {
-  sensor_msgs::PointCloud2::Ptr clusters;  // the points on people, uint32 label 1..n
+  // The points on people: float32 x, y, z, uint32 label 1..n, then every other field of the raw
+  // scan as it was (intensity, ring, the per-point time of issue 21, ...), same header.
+  sensor_msgs::PointCloud2::Ptr clusters;
   detection::LidarDetection detection;
 };
 
@@ -55,6 +57,14 @@ class PersonDetectionAdapter {
 sensor_msgs::PointCloud2::Ptr encodeLabelledPoints(const std::vector<Eigen::Vector3f>& points,
                                                    const std::vector<std::uint32_t>& labels,
                                                    const std_msgs::Header& header);
+// The same, followed by every field of `source` other than x, y, z and label (each with its
+// datatype and count; a field that does not fit source's point_step is left out), copied from
+// point source_index[i] of `source` for output point i. The source layout must have been checked
+// (decodeCloud): x, y, z inside point_step and data for every point.
+sensor_msgs::PointCloud2::Ptr encodeLabelledPoints(const std::vector<Eigen::Vector3f>& points,
+                                                   const std::vector<std::uint32_t>& labels,
+                                                   const sensor_msgs::PointCloud2& source,
+                                                   const std::vector<std::uint32_t>& source_index);
 
 }  // namespace ros_io
 }  // namespace thermal_lidar_calibration
