@@ -137,7 +137,9 @@ class ParameterTable {
   }
   // The documentation of every row, defaults taken from a default-constructed Params.
   std::vector<ParameterDoc> docs() const {
-    const Params defaults{};
+    // Default-initialised (the member initialisers run), not `{}`: GCC 12 warns, wrongly, that a
+    // std::string member of a value-initialised CoreParameters may be used uninitialised.
+    const Params defaults;
     std::vector<ParameterDoc> out;
     for (const auto& row : rows_) {
       out.push_back({row.key, row.section, row.yaml(defaults), row.meaning});
