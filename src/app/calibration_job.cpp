@@ -54,6 +54,9 @@ TruthComparison compareWithTruth(const CalibrationJobRequest& request, const Cal
   LossConfig loss_config;
   loss_config.behind_camera_penalty_c1 = request.parameters.calibration.behind_camera_penalty_c1;
   loss_config.pixel_rule = PixelRule::kNearest;
+  if (result.time_offset_mode != TimeOffsetMode::kNone) {
+    loss_config.time_offset_s = request.truth->time_offset_s.value_or(result.time_offset_s);
+  }
   const LossEvaluator evaluator(request.camera, request.pairs, loss_config);
   cmp.truth_loss = evaluator.loss(request.truth->extrinsic, usedPairs(result));
   return cmp;

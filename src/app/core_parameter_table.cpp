@@ -74,6 +74,7 @@ void addTimingRows(ParameterTable<CoreParameters>& t) {
       [](CoreParameters& p) -> TimeOffsetConfig& { return p.calibration.time_offset; });
   auto motion = t.group<MotionConfig>([](CoreParameters& p) -> MotionConfig& { return p.motion; });
   auto verdict = t.group<VerdictConfig>([](CoreParameters& p) -> VerdictConfig& { return p.quality.verdict; });
+  auto top = t.fields();
   t.section("Sensor timing (beyond the paper; issue #21)");
   timing.choice("time_offset_mode", &TimeOffsetConfig::mode,
                 {{"estimate", TimeOffsetMode::kEstimate}, {"fixed", TimeOffsetMode::kFixed}, {"none", TimeOffsetMode::kNone}},
@@ -87,6 +88,14 @@ void addTimingRows(ParameterTable<CoreParameters>& t) {
               "estimate: the offset is searched within +- this", "at least |time_offset_s|");
   timing.real("time_offset_coarse_step_s", &TimeOffsetConfig::coarse_step_s, aboveRange(0, 1), "s",
               "grid step of the coarse search before the joint refinement", "at most time_offset_max_s");
+  timing.real("time_offset_max_resolution_ms", &TimeOffsetConfig::max_resolution_ms, aboveRange(0, 1e6), "ms",
+              "estimate only when the drive's motion resolves the offset to this (1 sigma, with the pose free); "
+              "else it stays at time_offset_s and the verdict says why (straight steady driving resolves nothing)");
+  top.text("point_time_field", &CoreParameters::point_time_field,
+           TextRule::required("must be auto, none or the name of a PointCloud2 field"),
+           "the clusters' per-point capture time: auto (the first of time, t, timestamp, offset_time the "
+           "cloud has; none of them: no per-point times), none (ignore them) or a field name; float32/64 "
+           "seconds, relative to the header stamp or absolute, or (u)int32 nanoseconds relative to it");
   motion.integer("motion_window_scans", &MotionConfig::window_scans, {1, 10}, "",
                  "scans before and after a kept pair from which each person's velocity is fitted (a kept pair "
                  "waits for the later ones)");
@@ -158,16 +167,6 @@ void addDriftRows(ParameterTable<CoreParameters>& t) {
 }
 
 // Issue 21: when the LiDAR points were captured.
-void addTimingRows(ParameterTable<CoreParameters>& t) {
-  auto top = t.fields();
-  t.section("Sensor timing (beyond the paper; issue #21)");
-  top.text("point_time_field", &CoreParameters::point_time_field,
-           TextRule::required("must be auto, none or the name of a PointCloud2 field"),
-           "the clusters' per-point capture time: auto (the first of time, t, timestamp, offset_time the "
-           "cloud has; none of them: no per-point times), none (ignore them) or a field name; float32/64 "
-           "seconds, relative to the header stamp or absolute, or (u)int32 nanoseconds relative to it");
-}
-
 ParameterTable<CoreParameters> makeCoreParameterTable() {
   ParameterTable<CoreParameters> t;
   auto top = t.fields();
@@ -270,7 +269,6 @@ ParameterTable<CoreParameters> makeCoreParameterTable() {
   addQualityRows(t);
   addTimingRows(t);
   addDriftRows(t);
-  addTimingRows(t);
   return t;
 }
 

@@ -192,6 +192,22 @@ void writeResultFile(const std::string& path, const CalibrationResult& result,
   }
 }
 
+std::optional<double> readTimeOffset(const std::string& path, bool point_times) {
+  const YAML::Node root = loadYamlFile(path, "extrinsic file");
+  if (!root.IsMap()) return std::nullopt;
+  const char* key = !point_times && root["time_offset_at_scan_stamp_s"] ? "time_offset_at_scan_stamp_s"
+                                                                        : "time_offset_s";
+  if (!root[key]) return std::nullopt;
+  double seconds = 0.0;
+  try {
+    seconds = root[key].as<double>();
+  } catch (const YAML::Exception&) {
+    fail(path, std::string("'") + key + "' must be one number (seconds)");
+  }
+  if (!std::isfinite(seconds)) fail(path, std::string("'") + key + "' is not finite");
+  return seconds;
+}
+
 void checkExtrinsicFile(const std::string& path, const Extrinsic& expected) {
   const Extrinsic stored = readExtrinsicFile(path);
   if ((stored.rotation_vector - expected.rotation_vector).norm() > 1e-9 ||

@@ -119,12 +119,12 @@ std::vector<std::size_t> evolve(const LossEvaluator& nearest, const CalibrationC
   return used;
 }
 
-// Issue 21, mode estimate: only when the pairs resolve the offset (else it stays at its start,
-// as if fixed, and the verdict says why); then the coarse search from the evolution's pose.
+// Issue 21, mode estimate: only when the pairs resolve the offset, judged at the pose and inliers
+// the refinement at the starting offset converged to; else it stays at its start, as if fixed,
+// and the note (and the verdict) say why.
 bool resolvable(const LossEvaluator& nearest, const std::vector<CalibrationPair>& pairs, const CalibrationConfig& config,
                 const std::vector<std::size_t>& used, CalibrationResult& result) {
-  const TimingResolution r = timingResolution(nearest.camera(), pairs, used, result.extrinsic, result.time_offset_s,
-                                              result.evolution_loss);
+  const TimingResolution r = timingResolution(nearest.camera(), pairs, used, result.extrinsic, result.time_offset_s);
   result.time_resolution_ms = r.resolution_ms;
   if (r.resolution_ms <= config.time_offset.max_resolution_ms) return true;
   char note[320];
@@ -154,38 +154,25 @@ void searchOffset(const LossEvaluator& bilinear, const CalibrationConfig& config
 }
 
 // Beyond the paper: the local refinement, alternating with the re-selection of the inliers.
-// Returns the pairs used.
-std::vector<std::size_t> refine(const LossEvaluator& nearest, const std::vector<CalibrationPair>& pairs,
-                                const CalibrationConfig& config, std::vector<std::size_t> used, Reporter& report,
-                                CalibrationResult& result) {
+// Algorithm 2 can keep a mismatched pair (equal counts, different people) when neither of its
+// subset fits is accepted; one such pair pulls the optimum by decimetres. So the refinement
+// alternates: refine on the current inliers (with `timed`, the time offset too), then re-select
+// the inliers among the candidates with the paper's own test (Eq. 1 <= threshold_sample),
+// keeping at least the better half, until the set no longer changes. Returns the pairs used.
+std::vector<std::size_t> refineRounds(const LossEvaluator& nearest, const CalibrationConfig& config,
+                                      const std::vector<std::size_t>& candidates, std::vector<std::size_t> used,
+                                      bool timed, Reporter& report, CalibrationResult& result) {
   const LossEvaluator bilinear = nearest.withPixelRule(PixelRule::kBilinear);
-  // Algorithm 2 can keep a mismatched pair (equal counts, different people) when neither of
-  // its subset fits is accepted; one such pair pulls the optimum by decimetres. So the
-  // refinement alternates: refine on the current inliers, then re-select the inliers among
-  // ALL collected pairs with the paper's own test (Eq. 1 <= threshold_sample), keeping at least
-  // the better half, until the set no longer changes. Pairs with people cut by the image
-  // border are left out of the re-selection (refine.exclude_truncated).
-  const std::vector<std::size_t> candidates = refinementCandidates(nearest, config.refine.exclude_truncated);
-  if (!config.refine.reselect_inliers) {
-    // One refinement on Algorithm 2's inliers, less the excluded pairs.
-    std::vector<std::size_t> kept;
-    std::set_intersection(used.begin(), used.end(), candidates.begin(), candidates.end(),
-                          std::back_inserter(kept));
-    if (!kept.empty()) used = kept;
-  }
-  const bool estimate = result.time_offset_mode == TimeOffsetMode::kEstimate &&
-                        resolvable(nearest, pairs, config, used, result);
-  if (estimate) searchOffset(bilinear, config, used, report, result);
   constexpr int kMaxInlierRounds = 5;
   for (int round = 1; round <= kMaxInlierRounds && !result.stopped; ++round) {
     report.evaluations_before_stage = result.evaluations;
-    const std::string round_name = "refine " + std::to_string(round);
+    const std::string round_name = std::string(timed ? "timed refine " : "refine ") + std::to_string(round);
     const LossEvaluator here = at(bilinear, result.time_offset_s);
     result.history.push_back({round_name, 0, here.loss(result.extrinsic, used), report.evaluations_before_stage});
     const auto on_iteration = [&](int iteration, double loss, const Extrinsic& e, std::uint64_t evals) {
       return report("refine", iteration, 0, loss, e, evals, round_name);
     };
-    if (estimate) {
+    if (timed) {
       const TimedRefineOutcome refined = TimedRefinement(here, config.refine, config.time_offset, config.num_threads)
                                              .run(result.extrinsic, result.time_offset_s, used, on_iteration);
       result.extrinsic = refined.best;
@@ -204,6 +191,30 @@ std::vector<std::size_t> refine(const LossEvaluator& nearest, const std::vector<
         selectInliers(at(nearest, result.time_offset_s), result.extrinsic, config.outlier.threshold_px, candidates);
     if (reselected == used) break;
     used = reselected;
+  }
+  return used;
+}
+
+// The refinement at the starting offset (the pose alone, as without timing), then, when the time
+// offset is to be estimated and these pairs resolve it, the coarse search over the offset and the
+// joint refinement. Pairs with people cut by the image border are left out of the re-selection
+// (refine.exclude_truncated). Returns the pairs used.
+std::vector<std::size_t> refine(const LossEvaluator& nearest, const std::vector<CalibrationPair>& pairs,
+                                const CalibrationConfig& config, std::vector<std::size_t> used, Reporter& report,
+                                CalibrationResult& result) {
+  const std::vector<std::size_t> candidates = refinementCandidates(nearest, config.refine.exclude_truncated);
+  if (!config.refine.reselect_inliers) {
+    // One refinement on Algorithm 2's inliers, less the excluded pairs.
+    std::vector<std::size_t> kept;
+    std::set_intersection(used.begin(), used.end(), candidates.begin(), candidates.end(),
+                          std::back_inserter(kept));
+    if (!kept.empty()) used = kept;
+  }
+  used = refineRounds(nearest, config, candidates, std::move(used), false, report, result);
+  if (!result.stopped && result.time_offset_mode == TimeOffsetMode::kEstimate &&
+      resolvable(nearest, pairs, config, used, result)) {
+    searchOffset(nearest.withPixelRule(PixelRule::kBilinear), config, used, report, result);
+    if (!result.stopped) used = refineRounds(nearest, config, candidates, std::move(used), true, report, result);
   }
   result.inliers.assign(nearest.pairCount(), false);
   for (std::size_t i : used) result.inliers[i] = true;

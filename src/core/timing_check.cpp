@@ -82,7 +82,7 @@ std::optional<TimingAssessment> assessTiming(const CameraModel& camera, const st
     if (result.inliers[i]) used.push_back(i);
   }
   const TimingResolution r =
-      timingResolution(camera, pairs, used, result.extrinsic, result.time_offset_s, result.loss);
+      timingResolution(camera, pairs, used, result.extrinsic, result.time_offset_s);
   if (r.pairs_with_motion == 0) return std::nullopt;
   t.pairs_with_motion = r.pairs_with_motion;
   t.resolution_ms = r.resolution_ms;

@@ -11,10 +11,10 @@
 namespace thermal_lidar_calibration {
 namespace {
 
-// A pixel: below this the Eq. 3 loss of a good fit says little about how far a point may move
-// unnoticed (inside a mask the distance is zero), while mask edges and the rings' spacing blur
-// people by about this much.
-constexpr double kResidualFloorPx = 1.0;
+// A pixel: the Eq. 3 loss of a fit says little about how far a point may move unnoticed (inside a
+// mask the distance is zero; a fit that is still off says more about the fit than the data),
+// while mask edges and the rings' spacing blur people by about this much.
+constexpr double kResidualPx = 1.0;
 // Points per pair in the linearisation: plenty for a 7x7 matrix, cheap on big clusters.
 constexpr std::size_t kPointsPerPair = 64;
 
@@ -22,7 +22,7 @@ constexpr std::size_t kPointsPerPair = 64;
 
 TimingResolution timingResolution(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
                                   const std::vector<std::size_t>& used, const Extrinsic& extrinsic,
-                                  double time_offset_s, double residual_px) {
+                                  double time_offset_s) {
   TimingResolution out;
   const Eigen::Matrix3d R = extrinsic.rotationMatrix();
   const Eigen::Vector3d& tr = extrinsic.translation;
@@ -65,8 +65,7 @@ TimingResolution timingResolution(const CameraModel& camera, const std::vector<C
   const Eigen::Matrix<double, 6, 6> Hpp = H.topLeftCorner<6, 6>();
   const Eigen::Matrix<double, 6, 1> Hpd = H.block<6, 1>(0, 6);
   const double information = H(6, 6) - Hpd.dot(Eigen::LDLT<Eigen::Matrix<double, 6, 6>>(Hpp).solve(Hpd));
-  const double sigma_px = std::max(residual_px, kResidualFloorPx);
-  out.resolution_ms = information > 0.0 ? 1000.0 * sigma_px / std::sqrt(information)
+  out.resolution_ms = information > 0.0 ? 1000.0 * kResidualPx / std::sqrt(information)
                                         : std::numeric_limits<double>::infinity();
   return out;
 }

@@ -199,7 +199,7 @@ BagIngestStats ingestBag(rosbag::Bag& bag, const BagTopics& topics, const CorePa
   const auto observe = [&](const sensor_msgs::PointCloud2& clusters, const std::string& topic) {
     if (!builder.tracksMotion()) return;
     try {
-      builder.observeScan(decodeScanPeople(clusters, topic));
+      builder.observeScan(decodeScanPeople(clusters, topic, time_field));
     } catch (const std::invalid_argument&) {
     }
   };

@@ -180,9 +180,10 @@ std::string tfFrameId(const std::string& frame_id) {
   return first == std::string::npos ? "" : frame_id.substr(first);
 }
 
-ScanPeople decodeScanPeople(const sensor_msgs::PointCloud2& msg, const std::string& topic) {
-  const DecodedClusters decoded = decodeClusters(msg, topic);
-  return summariseScan(msg.header.stamp.toSec(), decoded.points, decoded.labels);
+ScanPeople decodeScanPeople(const sensor_msgs::PointCloud2& msg, const std::string& topic,
+                            const PointTimeField& time_field) {
+  const DecodedClusters decoded = decodeClusters(msg, topic, time_field);
+  return summariseScan(msg.header.stamp.toSec(), decoded.points, decoded.labels, decoded.point_time_s);
 }
 
 Frame decodeFrame(const sensor_msgs::Image& image, const sensor_msgs::Image& mask,
@@ -194,7 +195,6 @@ Frame decodeFrame(const sensor_msgs::Image& image, const sensor_msgs::Image& mas
   frame.camera_frame =
       tfFrameId(image.header.frame_id.empty() ? mask.header.frame_id : image.header.frame_id);
   frame.lidar_frame = tfFrameId(clusters.header.frame_id);
-  frame.cloud_stamp_s = clusters.header.stamp.toSec();
   frame.image = decodeMonoImage(image, image_topic);
   frame.mask = decodeMonoImage(mask, mask_topic);
   if (frame.image.size() != frame.mask.size()) {

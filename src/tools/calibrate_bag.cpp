@@ -280,7 +280,11 @@ CalibrationJobOutcome calibratePairs(const CalibrateBagOptions& options, const C
   job.pairs = read.builder->takePairs();
   job.parameters = params;
   if (reference) job.reference = JobReference{*reference, "file", options.reference};
-  if (truth) job.truth = JobTruth{*truth, options.truth};
+  if (truth) {
+    bool point_times = false;
+    for (const CalibrationPair& pair : job.pairs) point_times = point_times || !pair.point_time_s.empty();
+    job.truth = JobTruth{*truth, options.truth, readTimeOffset(options.truth, point_times)};
+  }
   job.lidar_frame = read.builder->lidarFrame();
   job.camera_frame = read.builder->cameraFrame();
   job.source = options.bag;

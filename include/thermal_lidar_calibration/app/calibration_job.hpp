@@ -32,6 +32,9 @@ struct JobReference {
 struct JobTruth {
   Extrinsic extrinsic;
   std::string file;
+  // The true camera time offset, when the file says (readTimeOffset): the truth's own loss is
+  // taken with the points at that instant, when the result moved points in time at all.
+  std::optional<double> time_offset_s;
 };
 
 struct CalibrationJobRequest {

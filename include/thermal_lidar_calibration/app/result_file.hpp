@@ -39,6 +39,11 @@ void writeResultFile(const std::string& path, const CalibrationResult& result,
                      const ResultContext& context);
 // Reads rotation_vector (or rotation_matrix) and translation. Throws std::invalid_argument.
 Extrinsic readExtrinsicFile(const std::string& path);
+// The file's camera time offset (issue 21), if it has one: `time_offset_s`, or with
+// `point_times` false `time_offset_at_scan_stamp_s` when present (a synthetic truth file: the
+// offset a fit that reads no per-point times should find). Throws std::invalid_argument on a
+// non-number.
+std::optional<double> readTimeOffset(const std::string& path, bool point_times);
 // Reads `path` back after a write and throws std::runtime_error naming it unless it holds
 // `expected` (a full disk can take the rename and lose the data: a write not checked is not one).
 void checkExtrinsicFile(const std::string& path, const Extrinsic& expected);

@@ -4,7 +4,7 @@
 // relative to the LiDAR, projected); a change of the pose moves the points by a pattern of six
 // parameters. What the pose cannot mimic is what measures delta: the Schur complement of the
 // pose block in the linearised 7x7 normal matrix of the points' image positions (each pair
-// weighing one: its points share one mask and one scan), against a pixel-scale residual, is
+// weighing one: its points share one mask and one scan), against a residual of a pixel, is
 // delta's 1-sigma given the pose. Straight driving at one speed past standing people moves
 // every point alike, a translation mimics it all, and the resolution is unbounded. ROS-free.
 
@@ -23,9 +23,9 @@ struct TimingResolution {
   std::vector<double> image_speed_px_s;  // their points' mean image speed, same order
 };
 
-// `used`: indices into `pairs`; `residual_px`: the fit's per-point residual (floored at a pixel).
+// `used`: indices into `pairs`.
 TimingResolution timingResolution(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
                                   const std::vector<std::size_t>& used, const Extrinsic& extrinsic,
-                                  double time_offset_s, double residual_px);
+                                  double time_offset_s);
 
 }  // namespace thermal_lidar_calibration

@@ -43,8 +43,10 @@ struct DecodedCloud {
 DecodedCloud decodeCloud(const sensor_msgs::PointCloud2& msg, const std::string& topic);
 
 // The clusters as one centroid per person (issue 21: the scans around a kept pair measure its
-// people's motion). Throws std::invalid_argument as decodeClusters does.
-ScanPeople decodeScanPeople(const sensor_msgs::PointCloud2& msg, const std::string& topic);
+// people's motion), each centroid at its points' mean capture time. Throws
+// std::invalid_argument as decodeClusters does.
+ScanPeople decodeScanPeople(const sensor_msgs::PointCloud2& msg, const std::string& topic,
+                            const PointTimeField& time_field = {});
 
 // The finite x, y, z of every k-th point, k chosen so that at most about `max_points` are read
 // (a full cloud for the overlay; other fields are ignored). The layout is checked exactly as

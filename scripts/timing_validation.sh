@@ -1,0 +1,93 @@
+#!/usr/bin/env bash
+# The camera time offset on synthetic drives (issue 21): for each case, noise and seed, a drive is
+# generated and calibrated with the default run (and, where a case says so, with
+# time_offset_mode none: today's behaviour), against the drive's truth as --reference, so the
+# result file holds the signed difference per camera axis and whether each 95 % interval held it.
+# scripts/timing_table.py prints the tables docs/validation/timing.md quotes.
+#
+# Cases (FieldSAFE-like rig unless named; field speed profile, half the people walking):
+#   fs_late60 fs_early40 fs_sync        camera 60 ms late / 40 ms early / synchronised
+#   ms2_late60 ms2_early40 ms2_sync     the MS2-like car (config/ms2.yaml)
+#   fs_endstamp60                       60 ms late, end-of-scan stamps with per-point times
+#   fs_sweep60                          60 ms late, end-of-scan stamps, no per-point times
+#   fs_raw60                            60 ms late, raw sensors (--raw, calibrate_bag --detect)
+#   fs_steady60                         60 ms late, steady straight driving, nobody walking
+# Usage: scripts/timing_validation.sh [--cases "A B"] [--noise "clean realistic"] [SEEDS...]
+# Results in out/timing/<case>.<noise>.seed<N>.<mode>.yaml; an existing result is kept (delete
+# the folder to measure again). Bags are deleted after use.
+set -euo pipefail
+# shellcheck source=scripts/workspace.sh
+source "$(dirname "${BASH_SOURCE[0]}")/workspace.sh"
+prepare_workspace
+cases="fs_late60 fs_early40 fs_sync ms2_late60 ms2_early40 ms2_sync fs_endstamp60 fs_sweep60 fs_raw60 fs_steady60"
+noises="clean realistic"
+seeds=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --cases) cases="$2"; shift 2 ;;
+    --noise) noises="$2"; shift 2 ;;
+    *) seeds+=("$1"); shift ;;
+  esac
+done
+[ ${#seeds[@]} -gt 0 ] || seeds=(1 2 3 4 5)
+out="${TLC_TIMING_OUT:-$repo/out/timing}"
+mkdir -p "$out"
+
+drive=(--speed-profile field --walking-fraction 0.5)
+generator() {  # case -> make_synthetic_bag flags
+  case "$1" in
+    fs_late60) echo "--rig fieldsafe ${drive[*]} --camera-time-offset 0.06" ;;
+    fs_early40) echo "--rig fieldsafe ${drive[*]} --camera-time-offset -0.04" ;;
+    fs_sync) echo "--rig fieldsafe ${drive[*]}" ;;
+    ms2_late60) echo "--rig ms2 ${drive[*]} --camera-time-offset 0.06" ;;
+    ms2_early40) echo "--rig ms2 ${drive[*]} --camera-time-offset -0.04" ;;
+    ms2_sync) echo "--rig ms2 ${drive[*]}" ;;
+    fs_endstamp60) echo "--rig fieldsafe ${drive[*]} --camera-time-offset 0.06 --lidar-stamp end --lidar-point-time" ;;
+    fs_sweep60) echo "--rig fieldsafe ${drive[*]} --camera-time-offset 0.06 --lidar-stamp end" ;;
+    fs_raw60) echo "--rig fieldsafe ${drive[*]} --camera-time-offset 0.06 --raw" ;;
+    fs_steady60) echo "--rig fieldsafe --speed-profile steady --walking-fraction 0 --camera-time-offset 0.06" ;;
+    *) echo "unknown case $1" >&2; exit 2 ;;
+  esac
+}
+modes() {  # case -> the runs on its bag
+  case "$1" in
+    fs_sync | ms2_sync | fs_late60 | ms2_late60) echo "default none" ;;
+    *) echo "default" ;;
+  esac
+}
+
+for case_ in $cases; do
+  for noise in $noises; do
+    for seed in "${seeds[@]}"; do
+      name="$case_.$noise.seed$seed"
+      todo=()
+      for mode in $(modes "$case_"); do [ -s "$out/$name.$mode.yaml" ] || todo+=("$mode"); done
+      [ ${#todo[@]} -gt 0 ] || continue
+      bag="$out/$name.bag"
+      truth="$out/$name.truth.yaml"
+      # shellcheck disable=SC2046
+      "$bin/make_synthetic_bag" $(generator "$case_") --noise "$noise" --seed "$seed" \
+        --output "$bag" --truth "$truth" > "$out/$name.gen.log" 2>&1
+      for mode in "${todo[@]}"; do
+        config=()
+        if [ "$mode" = none ]; then  # today's behaviour: timing ignored
+          { if [[ "$case_" == ms2_* ]]; then cat "$repo/config/ms2.yaml"; printf '\n'; fi
+            echo "time_offset_mode: none"; } > "$out/$name.none.config.yaml"
+          config=(--config "$out/$name.none.config.yaml")
+        elif [[ "$case_" == ms2_* ]]; then
+          config=(--config "$repo/config/ms2.yaml")
+        fi
+        detect=()
+        [[ "$case_" == *_raw* ]] && detect=(--detect)
+        SECONDS=0
+        if ! "$bin/calibrate_bag" --bag "$bag" --output "$out/$name.$mode.yaml" --truth "$truth" \
+            --reference "$truth" --quiet "${config[@]}" "${detect[@]}" > "$out/$name.$mode.log" 2>&1; then
+          echo "calibrate_bag failed: $name $mode ($(tail -n 1 "$out/$name.$mode.log"))" >&2
+        fi
+        echo "$name $mode: ${SECONDS} s" >&2
+      done
+      rm -f "$bag"
+    done
+  done
+done
+/usr/bin/python3 "$repo/scripts/timing_table.py" "$out"
