@@ -17,8 +17,9 @@ namespace thermal_lidar_calibration {
 DriftTimeline watchDrift(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
                          const Extrinsic& reference, const DriftConfig& drift,
                          const CalibrationConfig& calibration,
-                         const std::function<bool(std::size_t, std::size_t)>& progress) {
-  DriftMonitor monitor(camera, reference, drift, calibration);
+                         const std::function<bool(std::size_t, std::size_t)>& progress,
+                         std::optional<double> time_offset_s) {
+  DriftMonitor monitor(camera, reference, drift, calibration, time_offset_s);
   DriftTimeline timeline;
   timeline.reference = reference;
   for (std::size_t i = 0; i < pairs.size(); ++i) {
@@ -31,6 +32,9 @@ DriftTimeline watchDrift(const CameraModel& camera, const std::vector<Calibratio
   timeline.first_error_stamp_s = monitor.firstErrorStamp();
   timeline.pairs = monitor.pairsSeen();
   timeline.seconds = monitor.secondsInTests();
+  timeline.time_offset_s = monitor.timeOffset();
+  timeline.timing_state = monitor.timingState();
+  timeline.timing_change_s = monitor.timingChange();
   return timeline;
 }
 
@@ -42,17 +46,19 @@ void writeDriftCsv(const std::string& path, const DriftTimeline& timeline) {
   // against the reference, px, its p-values and the pairs in it.
   out << "stamp,pairs_in_window,state,rotation_change_deg,translation_change_cm,loss_reference,"
          "loss_fit,pairs_seen,p_value,held_out_pairs,image_shift_px,pairs_used,changed,"
-         "offset_x_px,offset_y_px,offset_p_value_x,offset_p_value_y,offset_pairs\n";
-  char row[400];
+         "offset_x_px,offset_y_px,offset_p_value_x,offset_p_value_y,offset_pairs,timing_state,"
+         "timing_change_ms\n";
+  char row[480];
   for (const DriftRecord& r : timeline.records) {
     std::snprintf(row, sizeof(row),
-                  "%.3f,%zu,%s,%.4f,%.3f,%.5f,%.5f,%llu,%.3g,%zu,%.3f,%zu,%d,%.3f,%.3f,%.3g,%.3g,%zu\n",
+                  "%.3f,%zu,%s,%.4f,%.3f,%.5f,%.5f,%llu,%.3g,%zu,%.3f,%zu,%d,%.3f,%.3f,%.3g,%.3g,%zu,%s,%.1f\n",
                   r.stamp_s, r.test.pairs_in_window, toString(r.state), r.test.change.angle_deg,
                   r.test.change.distance_cm, r.test.loss_reference, r.test.loss_fit,
                   static_cast<unsigned long long>(r.pairs_seen), r.test.p_value,
                   r.test.held_out_pairs, r.test.image_shift_px, r.test.pairs_used,
                   r.test.changed() ? 1 : 0, r.test.offset_px.x(), r.test.offset_px.y(),
-                  r.test.offset_p_value.x(), r.test.offset_p_value.y(), r.test.offset_pairs);
+                  r.test.offset_p_value.x(), r.test.offset_p_value.y(), r.test.offset_pairs,
+                  toString(r.timing_state), r.timing_change_s ? 1000.0 * *r.timing_change_s : 0.0);
     out << row;
   }
   out.close();
@@ -107,6 +113,16 @@ void writeDriftResult(const std::string& path, const DriftTimeline& timeline,
   const double r[3] = {change.rotation_deg.x(), change.rotation_deg.y(), change.rotation_deg.z()};
   emitVector(out, "rotation_change_axes_deg", r, 3);
   out << YAML::Key << "reference_file" << YAML::Value << reference_file;
+  // Issue 21: timing apart from the extrinsic.
+  out << YAML::Key << "time_offset_s" << YAML::Value;
+  stamp(timeline.time_offset_s);
+  out << YAML::Key << "timing_state" << YAML::Value << toString(timeline.timing_state);
+  out << YAML::Key << "time_offset_change_ms" << YAML::Value;
+  if (timeline.timing_change_s) {
+    out << 1000.0 * *timeline.timing_change_s;
+  } else {
+    out << YAML::Null;
+  }
   out << YAML::Key << "pairs" << YAML::Value << timeline.pairs;
   out << YAML::Key << "tests" << YAML::Value << timeline.records.size();
   if (timeline.candidate) {

@@ -35,6 +35,9 @@ struct DriftWatchWorker::State {
     snapshot.seconds = monitor.secondsInTests();
     snapshot.candidates_refused = monitor.candidatesRefused();
     snapshot.queued = queue.size();
+    snapshot.time_offset_s = monitor.timeOffset();
+    snapshot.timing_state = monitor.timingState();
+    snapshot.timing_change_s = monitor.timingChange();
   }
 
   void run() {
@@ -67,8 +70,9 @@ struct DriftWatchWorker::State {
 };
 
 DriftWatchWorker::DriftWatchWorker(const CameraModel& camera, const Extrinsic& reference,
-                                   const DriftConfig& drift, const CalibrationConfig& calibration)
-    : state_(std::make_shared<State>(DriftMonitor(camera, reference, drift, calibration))) {
+                                   const DriftConfig& drift, const CalibrationConfig& calibration,
+                                   std::optional<double> time_offset_s)
+    : state_(std::make_shared<State>(DriftMonitor(camera, reference, drift, calibration, time_offset_s))) {
   {
     std::lock_guard<std::mutex> monitor_lock(state_->monitor_mutex);
     std::lock_guard<std::mutex> lock(state_->mutex);

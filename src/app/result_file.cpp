@@ -208,6 +208,15 @@ std::optional<double> readTimeOffset(const std::string& path, bool point_times) 
   return seconds;
 }
 
+std::optional<double> readAppliedTimeOffset(const std::string& path) {
+  const YAML::Node root = loadYamlFile(path, "extrinsic file");
+  if (root.IsMap() && root["time_offset_mode"] && root["time_offset_mode"].IsScalar() &&
+      root["time_offset_mode"].as<std::string>() == "none") {
+    return std::nullopt;
+  }
+  return readTimeOffset(path, true);
+}
+
 void checkExtrinsicFile(const std::string& path, const Extrinsic& expected) {
   const Extrinsic stored = readExtrinsicFile(path);
   if ((stored.rotation_vector - expected.rotation_vector).norm() > 1e-9 ||

@@ -24,6 +24,8 @@ void DriftConfig::validate() const {
   requireRange("monitor_fit_max_evaluations", fit_max_evaluations, 1, 100000000);
   requireRange("monitor_max_update_rotation_deg", max_update_rotation_deg, 0.0, 180.0);
   requireRange("monitor_max_update_translation_cm", max_update_translation_cm, 0.0, 1e5);
+  requireRange("monitor_min_timing_change_ms", min_timing_change_ms, 0.0, 1e4);
+  requireRange("monitor_timing_explained_fraction", timing_explained_fraction, 0.0, 1.0);
 }
 
 }  // namespace thermal_lidar_calibration

@@ -1,23 +1,28 @@
 #include "thermal_lidar_calibration/core/drift_monitor.hpp"
 
 #include "thermal_lidar_calibration/core/change_point.hpp"
+#include "thermal_lidar_calibration/core/drift_timing.hpp"
 #include "thermal_lidar_calibration/core/drift_update_fit.hpp"
 #include "thermal_lidar_calibration/core/local_fit.hpp"
 #include "thermal_lidar_calibration/core/loss.hpp"
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <utility>
 
 namespace thermal_lidar_calibration {
 
 DriftMonitor::DriftMonitor(const CameraModel& camera, const Extrinsic& reference,
-                           const DriftConfig& drift, const CalibrationConfig& calibration)
+                           const DriftConfig& drift, const CalibrationConfig& calibration,
+                           std::optional<double> time_offset_s)
     : camera_(camera),
       reference_(reference),
       drift_(drift),
       calibration_(calibration),
-      machine_(drift.confirm_windows) {
+      machine_(drift.confirm_windows),
+      time_offset_s_(time_offset_s),
+      timing_machine_(drift.confirm_windows) {
   camera_.validate();
   drift_.validate();
   calibration_.validate();
@@ -67,8 +72,23 @@ void DriftMonitor::updateOffsets() {
   seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 }
 
+bool DriftMonitor::isTimingChange(const std::vector<CalibrationPair>& window, DriftRecord& record) const {
+  if (!time_offset_s_ || !record.test.changed()) return false;
+  const std::optional<TimingChangeFit> t =
+      fitTimingChange(camera_, window, reference_, record.test.fit, calibration_.time_offset.max_s,
+                      calibration_.behind_camera_penalty_c1);
+  if (!t || std::abs(t->change_s) * 1000.0 < drift_.min_timing_change_ms ||
+      t->explained() < drift_.timing_explained_fraction) {
+    return false;
+  }
+  record.timing_change_s = t->change_s;
+  return true;
+}
+
 std::optional<DriftRecord> DriftMonitor::addPair(CalibrationPair pair) {
   pair.image.release();
+  // Held at the image's instant for the reference's time offset (issue 21).
+  if (time_offset_s_) pair = rebasedAtTimeOffset(std::move(pair), *time_offset_s_);
   // The watch's own time for this pair, whichever way it returns (seconds()).
   const auto started = std::chrono::steady_clock::now();
   auto elapsed = [&] {
@@ -108,10 +128,17 @@ std::optional<DriftRecord> DriftMonitor::addPair(CalibrationPair pair) {
   record.stamp_s = window.back().stamp_s;
   record.pairs_seen = next_seq_;
   record.test = testDriftWindow(camera_, window, reference_, drift_, calibration_, offsets);
+  // A change the camera's time offset explains is timing, kept apart from the extrinsic's state.
+  const bool timing = isTimingChange(window, record);
+  record.timing_state = timing_machine_.onTest(timing, record.stamp_s);
+  timing_change_s_ = record.timing_state == DriftState::kOk ? std::nullopt
+                     : timing                              ? record.timing_change_s
+                                                           : timing_change_s_;
+  const bool changed = record.test.changed() && !timing;
   const DriftState before = machine_.state();
-  record.state = machine_.onTest(record.test.changed(), record.stamp_s);
+  record.state = machine_.onTest(changed, record.stamp_s);
 
-  if (record.test.changed()) {
+  if (changed) {
     if (settling_) {
       // A change against the early update: start over from this window.
       settling_ = false;
@@ -137,7 +164,7 @@ std::optional<DriftRecord> DriftMonitor::addPair(CalibrationPair pair) {
     const std::optional<std::uint64_t> placed = change_seq_;
     locateChange(candidate_ ? candidate_->extrinsic : after);
     if (change_seq_ != placed) fitCandidate(candidate_ ? candidate_->extrinsic : after);
-  } else if (record.test.changed() && record.state != DriftState::kError) {
+  } else if (changed && record.state != DriftState::kError) {
     locateChange(record.test.fit);
   } else if (settling_ && !candidate_final) {
     fitCandidate(reference_);

@@ -133,7 +133,10 @@ int runDriftWatch(const CalibrateBagOptions& options, const CoreParameters& para
       [&](std::size_t done, std::size_t total) {
         progress.update("drift watch: pair " + std::to_string(done) + "/" + std::to_string(total));
         return !g_interrupted;
-      });
+      },
+      // The reference's own camera time offset (a result file of a run that applied one).
+      params.calibration.time_offset.mode == TimeOffsetMode::kNone ? std::nullopt
+                                                                   : readAppliedTimeOffset(options.reference));
   progress.finish();
   const std::string lidar = builder.lidarFrame().empty() ? "lidar" : builder.lidarFrame();
   const std::string cam = builder.cameraFrame().empty() ? "camera" : builder.cameraFrame();
@@ -169,6 +172,16 @@ int runDriftWatch(const CalibrateBagOptions& options, const CoreParameters& para
       std::printf("  95 %% intervals   %s about / along camera x, y, z (what the pairs pin down)\n",
                   formatHalfWidths(*c.uncertainty).c_str());
     }
+  }
+  if (timeline.time_offset_s) {
+    std::printf("  timing           %s: the reference's time offset %+.1f ms%s\n", toString(timeline.timing_state),
+                1000.0 * *timeline.time_offset_s,
+                timeline.timing_change_s
+                    ? (" changed by " + std::to_string(static_cast<int>(std::lround(1000.0 * *timeline.timing_change_s))) +
+                       " ms (a camera driver restarted with another latency?): the extrinsic fits at the new offset; "
+                       "set time_offset_s to the new offset")
+                          .c_str()
+                    : " holds");
   }
   std::printf("  files            %s, %s, %s\n", options.output.c_str(), csv.c_str(), png.c_str());
   std::printf("  monitor time     %.2f s for %zu tests\n", timeline.seconds, timeline.records.size());

@@ -26,13 +26,19 @@ struct DriftTimeline {
   std::optional<double> first_warn_stamp_s, first_error_stamp_s;
   std::uint64_t pairs = 0;
   double seconds = 0.0;                     // in the monitor's tests and fits
+  // Issue 21: the reference's camera time offset, and a change of it the tests found.
+  std::optional<double> time_offset_s;
+  DriftState timing_state = DriftState::kOk;
+  std::optional<double> timing_change_s;    // the latest, while the timing state is not OK
 };
 
 // `progress(done, total)` after each pair; return false to stop early.
+// `time_offset_s`: the reference's camera time offset, when its calibration applied one.
 DriftTimeline watchDrift(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
                          const Extrinsic& reference, const DriftConfig& drift,
                          const CalibrationConfig& calibration,
-                         const std::function<bool(std::size_t, std::size_t)>& progress = {});
+                         const std::function<bool(std::size_t, std::size_t)>& progress = {},
+                         std::optional<double> time_offset_s = std::nullopt);
 
 // One row per test: stamp, pairs_in_window, state, rotation_change_deg, translation_change_cm,
 // loss_reference, loss_fit (the change's angle and length against the reference). Throws

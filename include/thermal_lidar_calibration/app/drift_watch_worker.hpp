@@ -33,11 +33,16 @@ class DriftWatchWorker {
     std::uint64_t dropped = 0;                 // pairs dropped: the queue was full
     double seconds = 0.0;                      // in tests and fits so far (CPU of the watch)
     std::string error;                         // a test that threw (the watch goes on)
+    // Issue 21: the camera's time offset the reference goes with, and a change of it found by
+    // the tests (a timing change, not a drift of the extrinsic).
+    std::optional<double> time_offset_s;
+    DriftState timing_state = DriftState::kOk;
+    std::optional<double> timing_change_s;
   };
 
   // Throws std::invalid_argument on a bad config or camera.
   DriftWatchWorker(const CameraModel& camera, const Extrinsic& reference, const DriftConfig& drift,
-                   const CalibrationConfig& calibration);
+                   const CalibrationConfig& calibration, std::optional<double> time_offset_s = std::nullopt);
   // Stops the thread after the test in progress (at most one window fit).
   ~DriftWatchWorker();
   DriftWatchWorker(const DriftWatchWorker&) = delete;

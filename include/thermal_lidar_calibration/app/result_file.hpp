@@ -44,6 +44,9 @@ Extrinsic readExtrinsicFile(const std::string& path);
 // offset a fit that reads no per-point times should find). Throws std::invalid_argument on a
 // non-number.
 std::optional<double> readTimeOffset(const std::string& path, bool point_times);
+// The camera time offset a result file's extrinsic goes with: its time_offset_s, unless its
+// time_offset_mode is none (then, and without the key, nullopt).
+std::optional<double> readAppliedTimeOffset(const std::string& path);
 // Reads `path` back after a write and throws std::runtime_error naming it unless it holds
 // `expected` (a full disk can take the rename and lose the data: a write not checked is not one).
 void checkExtrinsicFile(const std::string& path, const Extrinsic& expected);

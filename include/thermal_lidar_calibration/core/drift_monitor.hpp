@@ -38,6 +38,10 @@ struct DriftRecord {
   std::uint64_t pairs_seen = 0;   // kept pairs given to the monitor so far
   DriftState state = DriftState::kOk;  // after this test
   DriftWindowTest test;
+  // Issue 21: the window changed, but the reference fits it again with the camera's time offset
+  // changed by this (drift_timing.hpp): a timing change, not counted as a drift of the extrinsic.
+  std::optional<double> timing_change_s;
+  DriftState timing_state = DriftState::kOk;  // the timing's own OK / WARN / ERROR
   double seconds = 0.0;           // wall time of this step (test, change point, candidate)
 };
 
@@ -71,14 +75,21 @@ struct DriftUpdate {
 class DriftMonitor {
  public:
   // Throws std::invalid_argument on a bad config.
+  // `time_offset_s`: the reference's camera time offset (issue 21), when its calibration applied
+  // one: pairs are held at their image's instant for it, and a changed window is first asked
+  // whether a change of the offset alone explains it.
   DriftMonitor(const CameraModel& camera, const Extrinsic& reference, const DriftConfig& drift,
-               const CalibrationConfig& calibration);
+               const CalibrationConfig& calibration, std::optional<double> time_offset_s = std::nullopt);
 
   // A kept pair, newer than the previous one (its image is dropped: the monitor needs the mask
   // and points only). Returns the test's record when one ran.
   std::optional<DriftRecord> addPair(CalibrationPair pair);
 
   DriftState state() const { return machine_.state(); }
+  DriftState timingState() const { return timing_machine_.state(); }
+  std::optional<double> timeOffset() const { return time_offset_s_; }
+  // The latest timing change found (s), while the timing state is not OK.
+  std::optional<double> timingChange() const { return timing_change_s_; }
   const Extrinsic& reference() const { return reference_; }
   const std::optional<DriftRecord>& lastRecord() const { return last_record_; }
   const std::optional<DriftCandidate>& candidate() const { return candidate_; }
@@ -124,6 +135,11 @@ class DriftMonitor {
   DriftConfig drift_;
   CalibrationConfig calibration_;
   DriftStateMachine machine_;
+  std::optional<double> time_offset_s_;
+  DriftStateMachine timing_machine_;
+  std::optional<double> timing_change_s_;
+  // Issue 21: whether the changed window `test` is a timing change; sets record.timing_change_s.
+  bool isTimingChange(const std::vector<CalibrationPair>& window, DriftRecord& record) const;
   std::deque<Held> held_;   // the latest max(window_pairs, update_pairs) pairs
   std::uint64_t next_seq_ = 0;
   int since_test_ = 0;
