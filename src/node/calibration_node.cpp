@@ -2,6 +2,8 @@
 
 #include "thermal_lidar_calibration/node/calibration_node.hpp"
 
+#include "thermal_lidar_calibration/app/timing_text.hpp"
+
 #include "thermal_lidar_calibration/app/camera_info_file.hpp"
 #include "thermal_lidar_calibration/app/result_file.hpp"
 #include "thermal_lidar_calibration/app/unknown_parameters.hpp"
@@ -33,6 +35,7 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   if (!params_.reference_file.empty()) {
     try {
       reference_ = readExtrinsicFile(params_.reference_file);
+      reference_time_offset_s_ = readAppliedTimeOffset(params_.reference_file);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(std::string("parameter 'reference_file': ") + e.what());
     }
@@ -123,7 +126,7 @@ void CalibrationNode::readParameters() {
 }
 
 void CalibrationNode::createBuilder(const CameraModel& camera, const std::string& source) {
-  builder_ = std::make_unique<DatasetBuilder>(camera, params_.core.gate);
+  builder_ = std::make_unique<DatasetBuilder>(camera, params_.core.gate, params_.core.motion);
   overlay_->setCamera(camera);
   ROS_INFO("camera intrinsics from %s: %s", source.c_str(), camera.describe().c_str());
 }
@@ -175,7 +178,14 @@ void CalibrationNode::diagnoseCalibration(NodeDiagnostics::Status& status) const
   status.add("state", stateName(state_));
   status.add("pairs kept", builder_ ? builder_->pairs().size() : 0);
   status.add("pairs required", params_.core.pairs_required);
-  if (result_) status.addf("loss (px)", "%.4f", result_->loss);
+  if (result_) {
+    status.addf("loss (px)", "%.4f", result_->loss);
+    status.add("time offset", timeOffsetText(*result_, quality_ ? quality_->uncertainty : std::nullopt));
+    status.addf("time offset (ms)", "%.1f", 1000.0 * result_->time_offset_s);
+    if (quality_ && quality_->uncertainty && quality_->uncertainty->timed) {
+      status.addf("time offset 95% +- (ms)", "%.1f", quality_->uncertainty->time_offset_ms);
+    }
+  }
   if (quality_) {
     status.add("verdict", toString(quality_->verdict.verdict));
     for (std::size_t i = 0; i < quality_->verdict.reasons.size(); ++i) {
@@ -204,6 +214,7 @@ void CalibrationNode::onTimer(const ros::WallTimerEvent& /*event*/) {
     if (auto outcome = worker_.takeOutcome()) handleOutcome(std::move(*outcome));
     if (result_ && !result_published_ && tfCheckWaitOver()) publishResult();
     if (result_ && result_published_) watchTf();
+    finishWaitingPairs();
     updateDrift();
     logProgress(false);
     reportSilentInputs();

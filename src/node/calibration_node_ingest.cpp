@@ -4,8 +4,10 @@
 #include "thermal_lidar_calibration/node/calibration_node.hpp"
 
 #include "thermal_lidar_calibration/core/coverage.hpp"
+#include "thermal_lidar_calibration/core/person_timing.hpp"
 #include "thermal_lidar_calibration/core/verdict.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
+#include "thermal_lidar_calibration/ros/velocity_fields.hpp"
 
 #include <unistd.h>
 
@@ -44,6 +46,7 @@ void CalibrationNode::resumeDataset() {
     stored_stamps_ns_.insert(static_cast<long long>(contents.pair_stamps_ns[i]));
   }
   pairs_resumed_ = builder_->pairs().size();
+  finished_pairs_ = pairs_resumed_;  // already in the bag
   camera_frame_ = contents.camera_frame;
   lidar_frame_ = contents.lidar_frame;
   ROS_INFO("~resume: reloaded %zu pairs from %s", pairs_resumed_, params_.dataset_bag.c_str());
@@ -92,7 +95,71 @@ void CalibrationNode::onClusters(const sensor_msgs::PointCloud2::ConstPtr& msg) 
     noteInput(2);
     reportSyncFault(clusters_topic_, synchronizer_->addClusters(msg));
     overlay_->onClusters(msg);
+    observeScan(*msg);
   });
+}
+
+// Every clusters message, kept frame or not, is a scan the people's motion is measured from
+// (issue 21); it may finish kept pairs that waited for it. One that cannot be decoded is
+// reported when its frame is.
+void CalibrationNode::observeScan(const sensor_msgs::PointCloud2& clusters) {
+  if (!builder_ || !builder_->tracksMotion()) return;
+  try {
+    builder_->observeScan(decodeScanPeople(clusters, clusters_topic_, PointTimeField::parse(params_.core.point_time_field)));
+  } catch (const std::invalid_argument&) {
+    return;
+  }
+  last_scan_time_ = ros::WallTime::now();
+  overlay_->setMotion(builder_->latestMotion(), builder_->latestScanStamp());
+  handleFinishedPairs();
+}
+
+// Kept pairs that have their people's motion: into the dataset bag (with it), then the fit
+// or the drift watch.
+void CalibrationNode::handleFinishedPairs() {
+  if (state_ == CalibrationStatus::MONITORING) {
+    monitorKeptPairs();
+    return;
+  }
+  bool added = false;
+  while (finished_pairs_ < builder_->pairs().size()) {
+    const CalibrationPair& pair = builder_->pairs()[finished_pairs_++];
+    added = true;
+    if (kept_messages_.empty()) continue;  // a pair from ~resume: already in the bag
+    KeptMessages kept = std::move(kept_messages_.front());
+    kept_messages_.pop_front();
+    if (kept.image->header.stamp.toSec() != pair.stamp_s) {
+      ROS_ERROR("internal: the kept pair at %.3f does not match its messages at %.3f; not recorded", pair.stamp_s,
+                kept.image->header.stamp.toSec());
+      continue;
+    }
+    const bool was_recording = recorder_->recording();
+    recorder_->record(*kept.image, *kept.mask,
+                      hasMeasuredMotion(pair) ? withVelocityFields(*kept.clusters, pair.motion, clusters_topic_)
+                                              : *kept.clusters,
+                      *camera_info_msg_);
+    if (was_recording && !recorder_->recording()) {  // this write failed: say so everywhere now
+      state_message_ = "recording stopped: " + recorder_->stopReason();
+      publishStatus();
+      diagnostics_->publishNow();
+    }
+  }
+  if (!added) return;
+  assessCollection();
+  if (builder_->pairs().size() >= nextFitPairs() && state_ == CalibrationStatus::COLLECTING) {
+    startOptimization(next_fit_pairs_ == 0 ? "~pairs_required reached"
+                                           : "~stop_when quality: " + std::to_string(nextFitPairs()) +
+                                                 " pairs, fitting again");
+  }
+}
+
+// The end of a replay, or a sensor that stopped: pairs still waiting for later scans get the
+// motion the scans there are show, rather than never joining the dataset.
+void CalibrationNode::finishWaitingPairs() {
+  if (!builder_ || builder_->pendingPairs() == 0) return;
+  if ((ros::WallTime::now() - last_scan_time_).toSec() < kScanSilenceS) return;
+  builder_->flushPending();
+  handleFinishedPairs();
 }
 
 void CalibrationNode::reportSyncFault(const std::string& topic,
@@ -187,28 +254,16 @@ void CalibrationNode::onFrame(const sensor_msgs::Image::ConstPtr& image,
               toString(outcome.decision), outcome.mask_people, outcome.cluster_people);
     return;
   }
-  if (state_ == CalibrationStatus::MONITORING) {
-    monitorKeptPairs();
-    return;
+  if (state_ != CalibrationStatus::MONITORING) {
+    stored_stamps_ns_.insert(static_cast<long long>(image->header.stamp.toNSec()));
+    camera_frame_ = builder_->cameraFrame();
+    lidar_frame_ = builder_->lidarFrame();
+    // Recorded when the pair is finished: with motion, once the scans after it have arrived.
+    kept_messages_.push_back({image, mask, clusters});
+    ROS_DEBUG("kept frame %.3f (%d people): %s", image->header.stamp.toSec(), outcome.mask_people,
+              progressLine().c_str());
   }
-  stored_stamps_ns_.insert(static_cast<long long>(image->header.stamp.toNSec()));
-  camera_frame_ = builder_->cameraFrame();
-  lidar_frame_ = builder_->lidarFrame();
-  const bool was_recording = recorder_->recording();
-  recorder_->record(*image, *mask, *clusters, *camera_info_msg_);
-  if (was_recording && !recorder_->recording()) {  // this write failed: say so everywhere now
-    state_message_ = "recording stopped: " + recorder_->stopReason();
-    publishStatus();
-    diagnostics_->publishNow();
-  }
-  ROS_DEBUG("kept frame %.3f (%d people): %s", image->header.stamp.toSec(), outcome.mask_people,
-            progressLine().c_str());
-  assessCollection();
-  if (builder_->pairs().size() >= nextFitPairs() && state_ == CalibrationStatus::COLLECTING) {
-    startOptimization(next_fit_pairs_ == 0 ? "~pairs_required reached"
-                                           : "~stop_when quality: " + std::to_string(nextFitPairs()) +
-                                                 " pairs, fitting again");
-  }
+  handleFinishedPairs();
 }
 
 // Where the people were so far and what is missing, before a fit tells more: coverage only (the

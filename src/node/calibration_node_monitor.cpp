@@ -39,6 +39,17 @@ LatestDrift latestDrift(const DriftWatchWorker::Snapshot& s) {
   return {};
 }
 
+// Issue 21: a change of the camera's time offset, in words, with what to do.
+std::string timingChangeText(double time_offset_s, double change_s) {
+  char text[400];
+  std::snprintf(text, sizeof(text),
+                "the camera's time offset changed by %+.0f ms (from %+.0f to %+.0f ms: a camera driver restarted "
+                "with another latency?); the extrinsic fits at the new offset, it did not move: set "
+                "~time_offset_s to %.4f (time_offset_mode fixed) or fix the driver",
+                1000.0 * change_s, 1000.0 * time_offset_s, 1000.0 * (time_offset_s + change_s), time_offset_s + change_s);
+  return text;
+}
+
 // A confirmed change with a new extrinsic to take (~accept_update).
 bool updateAvailable(const DriftWatchWorker::Snapshot& s) {
   return s.candidate.has_value() && s.state == DriftState::kError;
@@ -46,17 +57,27 @@ bool updateAvailable(const DriftWatchWorker::Snapshot& s) {
 
 }  // namespace
 
-void CalibrationNode::startMonitoring(const Extrinsic& reference, const std::string& origin) {
+void CalibrationNode::startMonitoring(const Extrinsic& reference, const std::string& origin,
+                                      std::optional<double> time_offset_s) {
+  if (params_.core.calibration.time_offset.mode == TimeOffsetMode::kNone) time_offset_s.reset();
   drift_ = std::make_unique<DriftWatchWorker>(builder_->camera(), reference, params_.core.drift,
-                                              params_.core.calibration);
+                                              params_.core.calibration, time_offset_s);
   drift_reference_ = origin;
   last_drift_state_ = DriftState::kOk;
+  last_timing_state_ = DriftState::kOk;
   if (builder_->frameIdsLocked()) builder_->takePairs();  // the calibration's pairs are done
+  kept_messages_.clear();  // a watch never records
+  finished_pairs_ = 0;
   ROS_INFO("drift watch: watching the extrinsic from %s (tests of the latest %d kept pairs every "
            "%d; ~auto_update %s)",
            origin.c_str(), params_.core.drift.window_pairs, params_.core.drift.period_pairs,
            params_.auto_update ? "on" : "off: a confirmed change waits for ~accept_update");
   setState(CalibrationStatus::MONITORING, "monitoring the extrinsic from " + origin);
+}
+
+std::optional<double> CalibrationNode::configuredTimeOffset() const {
+  const TimeOffsetConfig& t = params_.core.calibration.time_offset;
+  return t.mode == TimeOffsetMode::kFixed ? std::optional<double>(t.offset_s) : std::nullopt;
 }
 
 // ~mode: monitor without a running watch: its reference is ~reference_file, else the tf tree's
@@ -65,12 +86,13 @@ bool CalibrationNode::ensureMonitoring(const std::string& camera_frame,
                                        const std::string& lidar_frame) {
   if (drift_) return true;
   if (reference_) {
-    startMonitoring(*reference_, "~reference_file " + params_.reference_file);
+    startMonitoring(*reference_, "~reference_file " + params_.reference_file,
+                    reference_time_offset_s_ ? reference_time_offset_s_ : configuredTimeOffset());
     return true;
   }
   std::string error;
   if (const auto live = tf_publisher_->lookupExtrinsic(lidar_frame, camera_frame, &error)) {
-    startMonitoring(*live, "live tf '" + lidar_frame + "' -> '" + camera_frame + "'");
+    startMonitoring(*live, "live tf '" + lidar_frame + "' -> '" + camera_frame + "'", configuredTimeOffset());
     return true;
   }
   const std::string text = "drift watch: no reference yet: ~reference_file is not set and the tf "
@@ -98,6 +120,15 @@ void CalibrationNode::updateDrift() {
   if (!s.error.empty() && s.error != drift_error_) {
     drift_error_ = s.error;
     ROS_ERROR("drift watch: a test failed: %s", s.error.c_str());
+  }
+  if (s.timing_state != last_timing_state_) {
+    last_timing_state_ = s.timing_state;
+    if (s.timing_state != DriftState::kOk && s.time_offset_s && s.timing_change_s) {
+      ROS_WARN("drift watch timing %s: %s", toString(s.timing_state),
+               timingChangeText(*s.time_offset_s, *s.timing_change_s).c_str());
+    } else {
+      ROS_INFO("drift watch timing %s: the camera's time offset holds", toString(s.timing_state));
+    }
   }
   if (s.state != last_drift_state_) {
     const DriftChange change = latestDrift(s).change;
@@ -181,6 +212,8 @@ void CalibrationNode::fillDriftStatus(CalibrationStatus& msg) const {
   const DriftWatchWorker::Snapshot s = drift_->snapshot();
   msg.drift_state = toString(s.state);
   msg.drift_reference = drift_reference_;
+  msg.drift_timing_state = s.time_offset_s ? toString(s.timing_state) : "";
+  msg.drift_time_offset_change_ms = s.timing_change_s ? 1000.0 * *s.timing_change_s : 0.0;
   msg.drift_pairs_seen = static_cast<std::uint32_t>(s.pairs_seen);
   msg.drift_pairs_in_window = static_cast<std::uint32_t>(s.pairs_in_window);
   msg.drift_tests = static_cast<std::uint32_t>(s.tests);
@@ -241,6 +274,17 @@ void CalibrationNode::diagnoseDrift(NodeDiagnostics::Status& status) const {
     if (s.state == DriftState::kError && !s.candidate) {
       status.summary(level, std::string("ERROR: the extrinsic no longer fits and the change is "
                                         "beyond what the watch refits: calibrate again"));
+    }
+  }
+  if (s.time_offset_s) {  // issue 21: timing apart from the extrinsic
+    status.addf("time offset of the reference (ms)", "%.1f", 1000.0 * *s.time_offset_s);
+    status.add("timing", toString(s.timing_state));
+    if (s.timing_change_s) {
+      status.addf("time offset change (ms)", "%.1f", 1000.0 * *s.timing_change_s);
+      if (s.state == DriftState::kOk && s.timing_state != DriftState::kOk) {
+        status.summary(s.timing_state == DriftState::kError ? DiagnosticStatus::ERROR : DiagnosticStatus::WARN,
+                       timingChangeText(*s.time_offset_s, *s.timing_change_s));
+      }
     }
   }
   status.addf("watch CPU time (s)", "%.2f", s.seconds);

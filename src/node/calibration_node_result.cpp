@@ -4,6 +4,7 @@
 #include "thermal_lidar_calibration/node/calibration_node.hpp"
 
 #include "thermal_lidar_calibration/app/static_transform_command.hpp"
+#include "thermal_lidar_calibration/app/timing_text.hpp"
 
 namespace thermal_lidar_calibration {
 namespace ros_io {
@@ -95,6 +96,12 @@ void CalibrationNode::handleOutcome(CalibrationWorker::Outcome outcome) {
     }
   }
   overlay_->setEstimate(result_->extrinsic);
+  overlay_->setTimeOffset(result_->time_offset_mode == TimeOffsetMode::kNone ? std::nullopt
+                                                                              : std::optional<double>(result_->time_offset_s));
+  ROS_INFO("camera time offset: %s",
+           timeOffsetText(*result_, quality_ ? quality_->uncertainty : std::nullopt).c_str());
+  const std::string late = timeOffsetWarning(*result_);
+  if (!late.empty()) ROS_WARN("%s", late.c_str());
   result_published_ = false;
   if (tfCheckWaitOver()) publishResult();
   // The pairs this fit used (collecting went on while it ran with ~stop_when: quality).
@@ -124,7 +131,11 @@ void CalibrationNode::handleOutcome(CalibrationWorker::Outcome outcome) {
                (write_error.empty() ? ""
                                     : "; result file NOT written (" + write_error +
                                           "); free the path and call ~save"));
-  if (params_.monitor_after_calibration) startMonitoring(result_->extrinsic, "this node's calibration");
+  if (params_.monitor_after_calibration) {
+    startMonitoring(result_->extrinsic, "this node's calibration",
+                    result_->time_offset_mode == TimeOffsetMode::kNone ? std::nullopt
+                                                                        : std::optional<double>(result_->time_offset_s));
+  }
 }
 
 bool CalibrationNode::tfCheckWaitOver() const {

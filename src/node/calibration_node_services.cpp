@@ -23,6 +23,8 @@ bool CalibrationNode::onReset(std_srvs::Trigger::Request& /*req*/, std_srvs::Tri
   }
   if (builder_) builder_->reset();
   stored_stamps_ns_.clear();
+  kept_messages_.clear();
+  finished_pairs_ = 0;
   pairs_resumed_ = 0;
   next_fit_pairs_ = 0;
   collecting_quality_.reset();
@@ -38,12 +40,13 @@ bool CalibrationNode::onReset(std_srvs::Trigger::Request& /*req*/, std_srvs::Tri
   if (drift_) {
     // The watch starts again from the extrinsic now in use, with an empty window.
     const Extrinsic in_use = drift_->snapshot().reference;
+    const std::optional<double> time_offset = drift_->snapshot().time_offset_s;
     const std::string origin = drift_reference_;
     const auto seen = drift_->snapshot().pairs_seen;
     drift_.reset();
     res.message += "; drift watch restarted (dropped its " + std::to_string(seen) + " pairs)";
     ROS_INFO("%s", res.message.c_str());
-    startMonitoring(in_use, origin);
+    startMonitoring(in_use, origin, time_offset);
     return true;
   }
   ROS_INFO("%s", res.message.c_str());

@@ -2,6 +2,8 @@
 
 #include "thermal_lidar_calibration/node/calibration_node.hpp"
 
+#include "thermal_lidar_calibration/app/timing_text.hpp"
+
 #include <cstdio>
 #include <sstream>
 
@@ -139,6 +141,14 @@ void CalibrationNode::publishStatus() {
     for (int i = 0; i < 3; ++i) msg.coverage_third_fractions[i] = q->coverage.thirdFraction(i);
     msg.quality_missing = q->verdict.reasons.empty() ? "" : q->verdict.reasons.front();
   }
+  if (result_) {
+    const std::optional<Uncertainty> u = quality_ ? quality_->uncertainty : std::nullopt;
+    msg.time_offset_mode = toString(result_->time_offset_mode);
+    msg.time_offset_s = result_->time_offset_s;
+    msg.time_offset_halfwidth_ms = u && u->timed ? u->time_offset_ms : 0.0;
+    msg.time_offset_text = timeOffsetText(*result_, u);
+  }
+  msg.pairs_waiting_for_motion = builder_ ? static_cast<std::uint32_t>(builder_->pendingPairs()) : 0;
   fillDriftStatus(msg);
   status_pub_.publish(msg);
 }

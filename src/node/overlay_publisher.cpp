@@ -2,6 +2,8 @@
 
 #include "thermal_lidar_calibration/node/overlay_publisher.hpp"
 
+#include "thermal_lidar_calibration/core/person_timing.hpp"
+
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 
 #include <cv_bridge/cv_bridge.h>
@@ -110,6 +112,17 @@ void OverlayPublisher::onImage(const sensor_msgs::Image::ConstPtr& image) {
       const DecodedClusters& decoded = decodedClusters();
       input.cluster_points = decoded.points;
       input.cluster_labels = decoded.labels;
+      const double cloud_stamp = clusters_msg_->header.stamp.toSec();
+      if (time_offset_s_ && !motion_.empty() && motion_stamp_s_ == cloud_stamp) {
+        CalibrationPair at;  // the clusters seen from the image's instant
+        at.stamp_s = image->header.stamp.toSec();
+        at.cloud_stamp_s = cloud_stamp;
+        at.points = decoded.points;
+        at.labels = decoded.labels;
+        at.point_time_s = decoded.point_time_s;
+        attachMotion(at, motion_);
+        input.cluster_points = pointsAtImageTime(at, *time_offset_s_);
+      }
     }
     if (cloud_msg_) decodeCloud();
     input.cloud_points = &cloud_points_;

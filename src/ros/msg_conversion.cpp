@@ -88,10 +88,19 @@ DecodedClusters decodeClusters(const sensor_msgs::PointCloud2& msg, const std::s
   const sensor_msgs::PointField* time = cloud_fields::pointTimeField(msg, time_field, topic);
   std::optional<cloud_fields::PointTimeReader> times;
   if (time) times.emplace(*time, msg.header.stamp.toSec());
+  // A dataset bag's clusters carry their people's measured motion (velocity_fields.hpp).
+  const sensor_msgs::PointField* velocity[3] = {cloud_fields::findField(msg, kVelocityFields[0]),
+                                                 cloud_fields::findField(msg, kVelocityFields[1]),
+                                                 cloud_fields::findField(msg, kVelocityFields[2])};
+  const bool moving = velocity[0] && velocity[1] && velocity[2];
+  if (moving) {
+    for (const sensor_msgs::PointField* f : velocity) cloud_fields::checkFieldFits(msg, *f, topic);
+  }
   DecodedClusters out;
   out.points.reserve(layout.points);  // bounded: the data holds every point (checked)
   out.labels.reserve(layout.points);
   if (times) out.point_time_s.reserve(layout.points);
+  if (moving) out.point_velocity.reserve(layout.points);
   for (std::size_t i = 0; i < layout.points; ++i) {
     const std::uint8_t* p = pointAt(msg, i);
     const double x = readScalar(p + layout.axes[0]->offset, layout.axes[0]->datatype);
@@ -119,6 +128,11 @@ DecodedClusters decodeClusters(const sensor_msgs::PointCloud2& msg, const std::s
     out.points.emplace_back(xf, yf, zf);
     out.labels.push_back(static_cast<std::int32_t>(l));
     if (times) out.point_time_s.push_back(static_cast<float>(t));
+    if (moving) {
+      Eigen::Vector3f v;
+      for (int k = 0; k < 3; ++k) v[k] = static_cast<float>(readScalar(p + velocity[k]->offset, velocity[k]->datatype));
+      out.point_velocity.push_back(v.allFinite() ? v : Eigen::Vector3f::Zero());  // not finite: not measured
+    }
   }
   return out;
 }
@@ -208,6 +222,7 @@ Frame decodeFrame(const sensor_msgs::Image& image, const sensor_msgs::Image& mas
   frame.points = std::move(decoded.points);
   frame.labels = std::move(decoded.labels);
   frame.point_time_s = std::move(decoded.point_time_s);
+  frame.point_velocity = std::move(decoded.point_velocity);
   frame.cloud_stamp_s = clusters.header.stamp.toSec();
   frame.nonfinite_points_dropped = decoded.nonfinite_dropped;
   return frame;

@@ -30,6 +30,7 @@
 #include <std_srvs/Trigger.h>
 
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <optional>
 #include <set>
@@ -64,6 +65,9 @@ class CalibrationNode {
  private:
   // Each distinct bad-frame fault is logged at most once per this period (fault_throttle_).
   static constexpr double kFaultLogPeriodS = 5.0;
+  // A kept pair waits for the scans after it (its people's motion); when none come for this long
+  // (a replay ended, the LiDAR stopped) it is finished with the scans there are.
+  static constexpr double kScanSilenceS = 1.0;
 
   // calibration_node.cpp
   void readParameters();
@@ -79,6 +83,9 @@ class CalibrationNode {
   void onImage(const sensor_msgs::Image::ConstPtr& msg);
   void onMask(const sensor_msgs::Image::ConstPtr& msg);
   void onClusters(const sensor_msgs::PointCloud2::ConstPtr& msg);
+  void observeScan(const sensor_msgs::PointCloud2& clusters);  // issue 21: people's motion
+  void handleFinishedPairs();  // pairs with their motion: the dataset bag, the fit, the drift watch
+  void finishWaitingPairs();   // timer: no scan for kScanSilenceS finishes the waiting pairs
   void reportSyncFault(const std::string& topic, const FrameSynchronizer::AddOutcome& outcome);
   void reportFrameIdConflict();
   void noteInput(std::size_t topic);  // 0 image, 1 mask, 2 clusters (input_rates_'s order)
@@ -111,7 +118,11 @@ class CalibrationNode {
   bool onSave(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
 
   // calibration_node_monitor.cpp
-  void startMonitoring(const Extrinsic& reference, const std::string& origin);
+  // `time_offset_s`: the camera time offset the reference goes with (issue 21), if known.
+  void startMonitoring(const Extrinsic& reference, const std::string& origin,
+                       std::optional<double> time_offset_s);
+  // The time offset a reference from elsewhere goes with: ~time_offset_s when fixed, else none.
+  std::optional<double> configuredTimeOffset() const;
   bool ensureMonitoring(const std::string& camera_frame, const std::string& lidar_frame);
   void monitorKeptPairs();
   void updateDrift();  // timer: state changes, ~auto_update
@@ -136,6 +147,15 @@ class CalibrationNode {
   std::unique_ptr<DatasetRecorder> recorder_;  // ~dataset_bag (a failed write stops recording)
   std::unique_ptr<NodeDiagnostics> diagnostics_;  // /diagnostics; parts add their tasks
   std::set<long long> stored_stamps_ns_;  // image stamps of pairs in the dataset (no duplicates)
+  // The messages of kept pairs not yet finished (waiting for their later scans), oldest first:
+  // recorded to the dataset bag with the motion when the pair is finished.
+  struct KeptMessages {
+    sensor_msgs::Image::ConstPtr image, mask;
+    sensor_msgs::PointCloud2::ConstPtr clusters;
+  };
+  std::deque<KeptMessages> kept_messages_;
+  std::size_t finished_pairs_ = 0;  // builder pairs already handed on (recorded, fitted, watched)
+  ros::WallTime last_scan_time_;
   std::size_t pairs_resumed_ = 0;
   bool frame_id_conflict_ = false;  // frames keep arriving with other ids than the dataset's
   std::unique_ptr<InputRates> input_rates_;  // image, mask, clusters: rates and silent topics
@@ -156,6 +176,7 @@ class CalibrationNode {
   std::unique_ptr<DriftWatchWorker> drift_;  // while monitoring
   std::string drift_reference_;              // where the watched extrinsic came from, in words
   DriftState last_drift_state_ = DriftState::kOk;
+  DriftState last_timing_state_ = DriftState::kOk;
   std::string drift_error_;
   std::vector<DriftUpdateEntry> drift_history_;  // accepted updates, oldest first
   bool discard_outcome_ = false;  // set by ~reset while a run is stopping
@@ -173,6 +194,7 @@ class CalibrationNode {
   std::optional<QualityAssessment> quality_;  // of result_: intervals, coverage, verdict, reference
   ResultContext result_context_;              // what the result file holds besides result_
   std::optional<Extrinsic> reference_;        // ~reference_file
+  std::optional<double> reference_time_offset_s_;  // its camera time offset, if it applied one
   std::string camera_frame_, lidar_frame_;
   std::string published_child_;
   bool result_published_ = true;  // false while a result waits for the tf check window

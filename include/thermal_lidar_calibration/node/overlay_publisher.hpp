@@ -6,6 +6,7 @@
 
 #include "thermal_lidar_calibration/core/camera_model.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
+#include "thermal_lidar_calibration/core/person_motion.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 #include "thermal_lidar_calibration/app/overlay_renderer.hpp"
 
@@ -30,6 +31,15 @@ class OverlayPublisher {
 
   void setCamera(const CameraModel& camera);
   void setEstimate(const std::optional<Extrinsic>& estimate) { estimate_ = estimate; }
+  // Issue 21: the estimate's camera time offset (nullopt: points drawn where they were
+  // captured), and the people's motion in the latest clusters (measured from the scans before it:
+  // a live overlay cannot wait for the next one), so the points are drawn where they were when
+  // the image was taken.
+  void setTimeOffset(std::optional<double> time_offset_s) { time_offset_s_ = time_offset_s; }
+  void setMotion(std::vector<PersonMotion> motion, double scan_stamp_s) {
+    motion_ = std::move(motion);
+    motion_stamp_s_ = scan_stamp_s;
+  }
 
   void onImage(const sensor_msgs::Image::ConstPtr& image);  // renders and publishes
   void onMask(const sensor_msgs::Image::ConstPtr& mask);
@@ -54,6 +64,9 @@ class OverlayPublisher {
   std::string cloud_topic_;  // resolved ~overlay_cloud, for messages
   std::unique_ptr<OverlayRenderer> renderer_;
   std::optional<Extrinsic> estimate_;
+  std::optional<double> time_offset_s_;
+  std::vector<PersonMotion> motion_;
+  double motion_stamp_s_ = 0.0;
   sensor_msgs::Image::ConstPtr mask_msg_;
   cv::Mat mask_;  // decoded mask_msg_ (empty if it could not be decoded)
   bool mask_decoded_ = false;

@@ -5,6 +5,7 @@
 #include "thermal_lidar_calibration/app/point_time_field.hpp"
 #include "thermal_lidar_calibration/core/calibration_pair.hpp"
 #include "thermal_lidar_calibration/core/camera_model.hpp"
+#include "thermal_lidar_calibration/ros/velocity_fields.hpp"
 
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
@@ -23,6 +24,9 @@ struct DecodedClusters {
   std::vector<std::int32_t> labels;
   // Per point, seconds from the header stamp; empty when `time_field` selects no field.
   std::vector<float> point_time_s;
+  // Per point, m/s relative to the LiDAR, when the cloud has the velocity fields a dataset bag
+  // writes (velocity_fields.hpp); empty otherwise.
+  std::vector<Eigen::Vector3f> point_velocity;
   std::size_t nonfinite_dropped = 0;    // points with a NaN/inf coordinate, label or time
 };
 // float32 x, y, z plus an integer (any int/uint width) or float `label` field, and the per-point
