@@ -49,7 +49,6 @@ struct Observed {
   std::vector<ros::Time> node_warning_stamps;  // their header stamps (when the node said them)
   std::vector<ros::WallTime> node_warning_received;  // when this test received them
   std::map<std::string, diagnostic_msgs::DiagnosticStatus> diagnostics;  // latest, by name
-  std::atomic<int> input_images{0};  // on thermal/image_raw, to tell when the player is done
   // The first ~status that said, while collecting before any fit, what the data covers and what
   // is missing (~stop_when quality).
   std::optional<CalibrationStatus> first_collecting_coverage;
@@ -88,8 +87,6 @@ inline void onOverlay(const sensor_msgs::Image::ConstPtr&) {
   ++g_observed.overlay_images;
 }
 
-inline void onInputImage(const sensor_msgs::Image::ConstPtr&) { ++g_observed.input_images; }
-
 inline void onDiagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr& msg) {
   std::lock_guard<std::mutex> lock(g_observed.mutex);
   for (const auto& status : msg->status) g_observed.diagnostics[status.name] = status;
@@ -120,7 +117,6 @@ inline std::vector<ros::Subscriber> subscribeToNode(ros::NodeHandle& nh) {
           nh.subscribe("/tf_static", 100, onTfStatic),
           nh.subscribe("/rosout", 1000, onRosout),
           nh.subscribe("/diagnostics", 100, onDiagnostics),
-          nh.subscribe("thermal/image_raw", 10, onInputImage),
           nh.subscribe("/player/paused", 1, onPlayerPaused),
           nh.subscribe("/player/done", 1, onPlayerDone)};
 }
