@@ -20,7 +20,6 @@ struct DriftWatchWorker::State {
   std::condition_variable wake;          // a pair was queued, or stop
   mutable std::condition_variable idle;  // the queue ran empty
   std::deque<CalibrationPair> queue;
-  bool busy = false;                     // the thread is testing a pair
   bool stop = false;
   Snapshot snapshot;
 
@@ -49,7 +48,8 @@ struct DriftWatchWorker::State {
         if (stop) return;
         pair = std::move(queue.front());
         queue.pop_front();
-        busy = true;
+        snapshot.queued = queue.size();
+        snapshot.testing = true;
       }
       std::lock_guard<std::mutex> monitor_lock(monitor_mutex);
       std::string error;
@@ -63,7 +63,7 @@ struct DriftWatchWorker::State {
       if (tested) ++snapshot.tests;
       if (!error.empty()) snapshot.error = error;
       refreshSnapshot();
-      busy = false;
+      snapshot.testing = false;
       if (queue.empty()) idle.notify_all();
     }
   }
@@ -113,7 +113,7 @@ DriftWatchWorker::Snapshot DriftWatchWorker::snapshot() const {
 bool DriftWatchWorker::drain(double timeout_s) const {
   std::unique_lock<std::mutex> lock(state_->mutex);
   return state_->idle.wait_for(lock, std::chrono::duration<double>(timeout_s),
-                               [&] { return state_->queue.empty() && !state_->busy; });
+                               [&] { return state_->queue.empty() && !state_->snapshot.testing; });
 }
 
 std::optional<DriftUpdate> DriftWatchWorker::accept() {

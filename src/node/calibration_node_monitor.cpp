@@ -226,6 +226,8 @@ void CalibrationNode::fillDriftStatus(CalibrationStatus& msg) const {
   msg.drift_loss_reference = latest.loss_reference;
   msg.drift_loss_fit = latest.loss_fit;
   msg.drift_update_available = updateAvailable(s);
+  msg.drift_pairs_waiting = static_cast<std::uint32_t>(s.queued + (s.testing ? 1 : 0));
+  msg.drift_update_ready = s.update_ready;
   msg.drift_updates = static_cast<std::uint32_t>(drift_history_.size());
   if (s.candidate) {
     msg.drift_update_model = toString(s.candidate->model);

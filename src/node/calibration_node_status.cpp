@@ -130,6 +130,12 @@ void CalibrationNode::publishStatus() {
       msg.translation[i] = result_->extrinsic.translation[i];
     }
   }
+  if (input_rates_) {  // input_rates_'s order: image, mask, clusters
+    msg.images_received = static_cast<std::uint32_t>(input_rates_->total(0));
+    msg.masks_received = static_cast<std::uint32_t>(input_rates_->total(1));
+    msg.clusters_received = static_cast<std::uint32_t>(input_rates_->total(2));
+  }
+  msg.intrinsics_known = builder_ != nullptr;
   msg.pairs_resumed = static_cast<std::uint32_t>(pairs_resumed_);
   msg.dataset_bag = params_.dataset_bag;
   msg.recording = recorder_ && recorder_->recording();

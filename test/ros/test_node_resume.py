@@ -2,6 +2,10 @@
 """Kill and resume: calibration_node is killed (SIGKILL) half way through a generated bag,
 restarted with ~resume:=true, and must finish with the pairs it had plus new ones.
 
+The bag is played by paced_bag_player (as fast as the node takes it): the first run pauses once
+the node has kept half the pairs it needs and has taken everything sent, so the kill comes at a
+known count on any machine.
+
 Runs under rostest (node_resume.test) with params ~work_dir and ~config_files.
 """
 import math
@@ -17,10 +21,13 @@ import rosbag
 import rospy
 import rostest
 import yaml
+from std_msgs.msg import UInt32
 from thermal_lidar_calibration.msg import CalibrationStatus
 
 NODE = "/calibration_node"
 PKG = "thermal_lidar_calibration"
+# The deadline of every wait: it only stops a hung test (a slow machine gets there later).
+HANG_GUARD_S = 120
 
 
 class Statuses:
@@ -74,7 +81,7 @@ def shift_stamps(src, dst):
     return images, round_trips
 
 
-def wait_for(predicate, timeout_s):
+def wait_for(predicate, timeout_s=HANG_GUARD_S):
     end = time.time() + timeout_s
     while time.time() < end and not rospy.is_shutdown():
         if predicate():
@@ -109,6 +116,8 @@ class KillAndResume(unittest.TestCase):
         self.statuses = Statuses()
         self.sub = rospy.Subscriber(NODE + "/status", CalibrationStatus, self.statuses.callback,
                                     queue_size=100)
+        self.paused = []
+        self.paused_sub = rospy.Subscriber("/player/paused", UInt32, lambda m: self.paused.append(m.data))
         self.procs = []
 
     def tearDown(self):
@@ -129,21 +138,24 @@ class KillAndResume(unittest.TestCase):
     def start_node(self):
         self.statuses.reset()
         node = self.start(["rosrun", PKG, "calibration_node", "__name:=calibration_node"])
-        self.assertTrue(wait_for(lambda: self.statuses.last is not None, 20), "no ~status")
+        self.assertTrue(wait_for(lambda: self.statuses.last is not None), "no ~status")
         return node
+
+    def play(self, *options):
+        return self.start(["rosrun", PKG, "paced_bag_player", self.bag, "__name:=player"] + list(options))
 
     def test_kill_half_way_then_resume(self):
         required = rospy.get_param(NODE + "/pairs_required")
         node = self.start_node()
-        play = self.start(["rosbag", "play", "-q", self.bag])
         half = required // 2
-        self.assertTrue(wait_for(lambda: self.statuses.last.pairs_kept >= half, 90),
-                        "never kept %d pairs: %s" % (half, self.statuses.last))
-        kept_before = self.statuses.last.pairs_kept
+        play = self.play("--pause-after-pairs", str(half))
+        self.assertTrue(wait_for(lambda: self.paused), "the player never paused: %s" % self.statuses.last)
+        kept_before = self.paused[0]  # every message sent was taken: the node is idle
         os.kill(node.pid, signal.SIGKILL)  # no chance to clean up
         node.wait()
         play.send_signal(signal.SIGINT)
         play.wait()
+        self.assertGreaterEqual(kept_before, half)
         self.assertLess(kept_before, required)
         self.assertTrue(os.path.exists(self.dataset_bag))
         self.assertFalse(os.path.exists(self.result_file))
@@ -151,11 +163,10 @@ class KillAndResume(unittest.TestCase):
         rospy.set_param(NODE + "/resume", True)
         self.start_node()
         resumed = self.statuses.first_after_start.pairs_resumed
-        self.assertGreaterEqual(resumed, kept_before, "pairs lost by the kill")
-        self.assertLess(resumed, required)
+        self.assertEqual(resumed, kept_before, "pairs lost by the kill (or more than were kept)")
         # Replay the whole bag: frames already in the dataset are not added twice.
-        self.start(["rosbag", "play", "-q", self.bag])
-        self.assertTrue(wait_for(lambda: self.statuses.last.state_name == "done", 150),
+        self.play()
+        self.assertTrue(wait_for(lambda: self.statuses.last.state_name == "done"),
                         "not done: %s" % self.statuses.last)
         with open(self.result_file) as f:
             result = yaml.safe_load(f)
@@ -163,7 +174,7 @@ class KillAndResume(unittest.TestCase):
         stamps = [p["stamp"] for p in result["pairs"]]
         self.assertEqual(len(stamps), len(set(stamps)), "a pair was added twice")
         self.assertEqual(self.statuses.last.pairs_resumed, resumed)
-        rospy.loginfo("resumed %d pairs (>= %d seen before the kill), finished with %d",
+        rospy.loginfo("resumed %d pairs (%d kept before the kill), finished with %d",
                       resumed, kept_before, result["pairs_collected"])
 
 

@@ -16,10 +16,12 @@
 
 #include <gtest/gtest.h>
 
+#include <poll.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -125,6 +127,21 @@ int countAcks(int fd) {
   return count;
 }
 
+// Reads acknowledgements from `fd` until `wanted` have come; returns how many came (fewer only
+// when the child stopped acknowledging for `hang_guard_s`: a deadline against hangs, not a clock).
+int readAcks(int fd, int wanted, double hang_guard_s) {
+  int count = 0;
+  while (count < wanted) {
+    pollfd p{fd, POLLIN, 0};
+    if (::poll(&p, 1, static_cast<int>(hang_guard_s * 1000)) <= 0) break;
+    char acks[64];
+    const ssize_t n = ::read(fd, acks, std::min<std::size_t>(sizeof(acks), static_cast<std::size_t>(wanted - count)));
+    if (n <= 0) break;
+    count += static_cast<int>(n);
+  }
+  return count;
+}
+
 std::size_t connectionsIn(const std::string& path) {
   rosbag::Bag bag(path, rosbag::bagmode::Read);
   return rosbag::View(bag).getConnections().size();
@@ -216,7 +233,10 @@ TEST(DatasetBagWriter, ContinuesABagWrittenByRosbag) {
 }
 
 // kill -9 at random moments while pairs are appended: every pair whose write() returned (reported
-// through a pipe) is in the bag afterwards, and the bag is continued by the next writer.
+// through a pipe) is in the bag afterwards, and the bag is continued by the next writer. Each
+// trial kills after 0-3 acknowledged pairs, at a random moment of the append that follows: the
+// count comes from the writer, so a slow machine runs the same trials (kills after a fixed time
+// once caught writers that had hardly started: 13 pairs in 30 trials).
 TEST(DatasetBagWriter, AKillAtAnyMomentKeepsEveryWrittenPair) {
   const std::string dir = tlc::test_support::tempDir("tlc_dataset_kill_");
   const std::string path = dir + "/dataset.bag";
@@ -234,11 +254,16 @@ TEST(DatasetBagWriter, AKillAtAnyMomentKeepsEveryWrittenPair) {
         ack();
       }
     });
-    std::this_thread::sleep_for(std::chrono::milliseconds(2 + rng() % 40));
+    const int wanted = static_cast<int>(rng() % 4);
+    const int before_kill = readAcks(child.acks_fd, wanted, 120.0);
+    // Where the kill lands in the next appends (a pair takes a few ms): the moment is random,
+    // no outcome depends on how far the writer got.
+    std::this_thread::sleep_for(std::chrono::microseconds(rng() % 20000));
     ::kill(child.pid, SIGKILL);
     int status = 0;
     ::waitpid(child.pid, &status, 0);
-    acknowledged += countAcks(child.acks_fd);
+    ASSERT_EQ(before_kill, wanted) << "trial " << trial << ": the writer acknowledged no pair for 120 s";
+    acknowledged += before_kill + countAcks(child.acks_fd);
     if (acknowledged == 0 && !std::filesystem::exists(path)) continue;  // killed before the first
     journals += std::filesystem::exists(path + ".journal") ? 1 : 0;  // killed inside an append
     const auto contents = tlc::ros_io::readDatasetBag(path);  // recovers from the journal
@@ -248,7 +273,6 @@ TEST(DatasetBagWriter, AKillAtAnyMomentKeepsEveryWrittenPair) {
     EXPECT_LE(in_bag, acknowledged + 1) << "trial " << trial;
     acknowledged = in_bag;  // a pair in the bag but not acknowledged counts from now on
   }
-  EXPECT_GT(acknowledged, kTrials) << "the writer hardly ran: the trials show nothing";
   std::printf("%d pairs written in %d kills, %d of them inside an append (recovered from the "
               "journal)\n", acknowledged, kTrials, journals);
   EXPECT_EQ(connectionsIn(path), 5u);

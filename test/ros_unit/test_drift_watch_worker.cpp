@@ -69,6 +69,7 @@ TEST(DriftWatchWorker, GivesWhatTheMonitorGivesOnTheSamePairsAndConfirmsABump) {
   const DriftWatchWorker::Snapshot s = worker.snapshot();
   EXPECT_EQ(s.pairs_seen, 80u);
   EXPECT_EQ(s.queued, 0u);
+  EXPECT_FALSE(s.testing);  // ~status's drift_pairs_waiting is 0 once drained
   EXPECT_EQ(s.dropped, 0u);
   EXPECT_TRUE(s.error.empty()) << s.error;
   EXPECT_EQ(s.state, DriftState::kError);

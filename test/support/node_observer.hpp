@@ -1,8 +1,12 @@
 #pragma once
 // What a rostest observes of a running calibration_node: its ~status, its /rosout lines of WARN
-// and above, /diagnostics, and the images it was sent; waiting for a condition on them; and the
-// check that the node is still up. Shared by the hostile-input and fuzz rostests. A test's main()
-// calls subscribeToNode() and runs an AsyncSpinner.
+// and above, /diagnostics, the images it was sent, and the paced_bag_player of the .test (its
+// ~paused and ~done); waiting for a condition on them; and the check that the node is still up.
+// Shared by the node rostests. A test's main() calls subscribeToNode() and runs an AsyncSpinner.
+//
+// Time enters these tests through the node, never through the machine: a test waits for the
+// state it needs (a ~status count, a line, the player's ~done), with kHangGuardS as the deadline
+// of every wait. That deadline only stops a hung test; a slow machine reaches the state later.
 
 #include <thermal_lidar_calibration/CalibrationStatus.h>
 
@@ -11,10 +15,13 @@
 #include <ros/ros.h>
 #include <rosgraph_msgs/Log.h>
 #include <sensor_msgs/Image.h>
+#include <std_msgs/UInt32.h>
+#include <std_msgs/UInt32MultiArray.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_msgs/TFMessage.h>
 
 #include <atomic>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <mutex>
@@ -26,6 +33,9 @@ namespace node_observer {
 
 using thermal_lidar_calibration::CalibrationStatus;
 
+// The deadline of every wait on the node's state: generous, a guard against hangs only.
+constexpr double kHangGuardS = 120.0;
+
 struct Observed {
   std::mutex mutex;
   std::vector<std::string> states;  // distinct consecutive state names
@@ -36,11 +46,15 @@ struct Observed {
   std::vector<std::string> node_tf_static_children;  // of the node's latest /tf_static message
   int overlay_images = 0;
   std::vector<std::string> node_warnings;  // /rosout WARN+ from calibration_node
+  std::vector<ros::Time> node_warning_stamps;  // their header stamps (when the node said them)
+  std::vector<ros::WallTime> node_warning_received;  // when this test received them
   std::map<std::string, diagnostic_msgs::DiagnosticStatus> diagnostics;  // latest, by name
-  std::atomic<int> input_images{0};  // on thermal/image_raw, to tell when the player is done
   // The first ~status that said, while collecting before any fit, what the data covers and what
   // is missing (~stop_when quality).
   std::optional<CalibrationStatus> first_collecting_coverage;
+  // The .test's paced_bag_player (named "player"): the pairs the node had kept when it paused,
+  // and the messages it played once the node had taken them all.
+  std::optional<std::uint32_t> player_paused_pairs, player_done_messages;
 };
 inline Observed g_observed;
 
@@ -73,8 +87,6 @@ inline void onOverlay(const sensor_msgs::Image::ConstPtr&) {
   ++g_observed.overlay_images;
 }
 
-inline void onInputImage(const sensor_msgs::Image::ConstPtr&) { ++g_observed.input_images; }
-
 inline void onDiagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr& msg) {
   std::lock_guard<std::mutex> lock(g_observed.mutex);
   for (const auto& status : msg->status) g_observed.diagnostics[status.name] = status;
@@ -85,6 +97,18 @@ inline void onRosout(const rosgraph_msgs::Log::ConstPtr& msg) {
   if (msg->name.find("calibration_node") == std::string::npos) return;
   std::lock_guard<std::mutex> lock(g_observed.mutex);
   g_observed.node_warnings.push_back(msg->msg);
+  g_observed.node_warning_stamps.push_back(msg->header.stamp);
+  g_observed.node_warning_received.push_back(ros::WallTime::now());
+}
+
+inline void onPlayerPaused(const std_msgs::UInt32::ConstPtr& msg) {
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  g_observed.player_paused_pairs = msg->data;
+}
+
+inline void onPlayerDone(const std_msgs::UInt32::ConstPtr& msg) {
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  g_observed.player_done_messages = msg->data;
 }
 
 // The subscriptions the helpers read; keep the returned subscribers alive.
@@ -93,9 +117,11 @@ inline std::vector<ros::Subscriber> subscribeToNode(ros::NodeHandle& nh) {
           nh.subscribe("/tf_static", 100, onTfStatic),
           nh.subscribe("/rosout", 1000, onRosout),
           nh.subscribe("/diagnostics", 100, onDiagnostics),
-          nh.subscribe("thermal/image_raw", 10, onInputImage)};
+          nh.subscribe("/player/paused", 1, onPlayerPaused),
+          nh.subscribe("/player/done", 1, onPlayerDone)};
 }
 
+// Waits until `predicate` holds (evaluated under g_observed.mutex); false after `timeout_s`.
 inline bool waitFor(double timeout_s, const std::function<bool()>& predicate) {
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
   while (ros::ok() && ros::WallTime::now() < end) {
@@ -107,6 +133,38 @@ inline bool waitFor(double timeout_s, const std::function<bool()>& predicate) {
   }
   std::lock_guard<std::mutex> lock(g_observed.mutex);
   return predicate();
+}
+
+// Messages the node has counted on its input topics (~status images/masks/clusters_received).
+struct InputCounts {
+  std::uint32_t images = 0, masks = 0, clusters = 0;
+};
+
+inline InputCounts inputsTaken() {
+  std::lock_guard<std::mutex> lock(g_observed.mutex);
+  const CalibrationStatus& s = g_observed.last_status;
+  return {s.images_received, s.masks_received, s.clusters_received};
+}
+
+// Waits until the node has counted at least `expected` on each input: what a test publishes
+// next then cannot overflow the node's subscriber queues, and what it published has arrived.
+inline bool waitForInputsTaken(const InputCounts& expected) {
+  return waitFor(kHangGuardS, [&] {
+    const CalibrationStatus& s = g_observed.last_status;
+    return s.images_received >= expected.images && s.masks_received >= expected.masks &&
+           s.clusters_received >= expected.clusters;
+  });
+}
+
+// Resumes the paused player; `sent` is what this test published to the node's inputs during the
+// pause (the player counts on the node's ~status totals). Latched: the player gets it whenever
+// it connects.
+inline void resumePlayer(const InputCounts& sent = {}) {
+  static ros::Publisher resume =
+      ros::NodeHandle().advertise<std_msgs::UInt32MultiArray>("/player/resume", 1, /*latch=*/true);
+  std_msgs::UInt32MultiArray msg;
+  msg.data = {sent.images, sent.masks, sent.clusters};
+  resume.publish(msg);
 }
 
 // True when the node said something containing every one of `parts` on /rosout.
@@ -140,12 +198,12 @@ inline void expectAlive(const std::string& after) {
     std::lock_guard<std::mutex> lock(g_observed.mutex);
     before = g_observed.status_messages;
   }
-  EXPECT_TRUE(waitFor(5.0, [&] { return g_observed.status_messages > before + 2; }))
+  EXPECT_TRUE(waitFor(kHangGuardS, [&] { return g_observed.status_messages > before + 2; }))
       << "~status stopped after " << after;
   std_srvs::Trigger trigger;
   ros::ServiceClient save =
       ros::NodeHandle().serviceClient<std_srvs::Trigger>("calibration_node/save");
-  EXPECT_TRUE(save.waitForExistence(ros::Duration(5.0))) << "~save gone after " << after;
+  EXPECT_TRUE(save.waitForExistence(ros::Duration(kHangGuardS))) << "~save gone after " << after;
   EXPECT_TRUE(save.call(trigger)) << "~save did not answer after " << after;
 }
 

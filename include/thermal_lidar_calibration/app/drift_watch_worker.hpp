@@ -30,6 +30,7 @@ class DriftWatchWorker {
     std::uint64_t tests = 0;
     std::uint64_t candidates_refused = 0;      // new fits too far to offer (max_update_*)
     std::size_t queued = 0;                    // pairs waiting for the thread
+    bool testing = false;                      // the thread is testing a pair (not in `queued`)
     std::uint64_t dropped = 0;                 // pairs dropped: the queue was full
     double seconds = 0.0;                      // in tests and fits so far (CPU of the watch)
     std::string error;                         // a test that threw (the watch goes on)
