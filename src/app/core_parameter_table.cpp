@@ -165,11 +165,13 @@ void addDriftRows(ParameterTable<CoreParameters>& t) {
   drift.real("monitor_max_update_translation_cm", &DriftConfig::max_update_translation_cm,
              closedRange(0, 1e5), "cm", "nor one moved further than this");
   drift.real("monitor_min_timing_change_ms", &DriftConfig::min_timing_change_ms, closedRange(0, 1e4), "ms",
-             "a changed window the reference fits again with the camera's time offset moved by at least "
-             "this, pose held, is a timing change, not a drift (needs the result's time offset)");
+             "a window the reference fits again with the camera's time offset moved by at least this, "
+             "pose held, is a timing change, not a drift (needs the result's time offset; the fit must "
+             "lower the loss by monitor_min_loss_ratio)");
   drift.real("monitor_timing_explained_fraction", &DriftConfig::timing_explained_fraction,
              closedRange(0, 1), "",
-             "the share of what the window's own fit gains that the offset alone must explain");
+             "a window the pose test calls changed is timing only if the offset alone explains this share of "
+             "what the window's own pose fit gains");
 }
 
 // Issue 21: when the LiDAR points were captured.

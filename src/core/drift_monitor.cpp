@@ -73,12 +73,17 @@ void DriftMonitor::updateOffsets() {
 }
 
 bool DriftMonitor::isTimingChange(const std::vector<CalibrationPair>& window, DriftRecord& record) const {
-  if (!time_offset_s_ || !record.test.changed()) return false;
+  if (!time_offset_s_) return false;
   const std::optional<TimingChangeFit> t =
       fitTimingChange(camera_, window, reference_, record.test.fit, calibration_.time_offset.max_s,
                       calibration_.behind_camera_penalty_c1);
-  if (!t || std::abs(t->change_s) * 1000.0 < drift_.min_timing_change_ms ||
-      t->explained() < drift_.timing_explained_fraction) {
+  if (!t || std::abs(t->change_s) * 1000.0 < drift_.min_timing_change_ms) return false;
+  // A window the pose test calls changed is timing only if the offset explains most of what the
+  // pose fit gains. When people move at different speeds a latency change is no pose change at
+  // all (the pose test sees nothing while the loss grows): then the offset alone must make the
+  // reference fit as much better as the pose test asks of a change (monitor_min_loss_ratio).
+  if (record.test.changed() ? t->explained() < drift_.timing_explained_fraction
+                            : t->loss * drift_.min_loss_ratio > t->loss_reference) {
     return false;
   }
   record.timing_change_s = t->change_s;

@@ -2,6 +2,7 @@
 // and livox drivers write, point_time_field auto / none / a name, bad fields, NaN points.
 
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
+#include "thermal_lidar_calibration/ros/velocity_fields.hpp"
 
 #include "../support/test_files.hpp"
 
@@ -217,4 +218,32 @@ TEST(PointTimes, DecodeFrameCarriesTheTimesAndTheCloudsStamp) {
   EXPECT_NEAR(f.point_time_s[2], -0.035, 1e-7);
   EXPECT_TRUE(tlc::ros_io::decodeFrame(image, image, velodyneClusters(), "/i", "/m", "/c", named("none"))
                   .point_time_s.empty());
+}
+
+// The dataset bag keeps each kept pair's people's motion (velocity_fields.hpp): written per point
+// from its label, read back by decodeClusters with the times, replaced rather than duplicated when
+// written twice; a label without a measured motion reads 0.
+TEST(PointTimes, VelocityFieldsRoundTripThroughTheDatasetBagsClusters) {
+  tlc::PersonMotion walker;
+  walker.label = 1;
+  walker.velocity_mps = Eigen::Vector3d(-2.0, 0.5, 0.0);
+  walker.scans = 5;
+  tlc::PersonMotion unmeasured;
+  unmeasured.label = 2;
+  unmeasured.velocity_mps = Eigen::Vector3d(9, 9, 9);
+  unmeasured.scans = 1;
+  const sensor_msgs::PointCloud2 once =
+      tlc::ros_io::withVelocityFields(velodyneClusters(), {walker, unmeasured}, "/clusters");
+  const sensor_msgs::PointCloud2 twice = tlc::ros_io::withVelocityFields(once, {walker}, "/clusters");
+  EXPECT_EQ(twice.fields.size(), once.fields.size());
+  for (const auto& msg : {once, twice}) {
+    const auto d = decodeClusters(msg, "/clusters", named("time"));
+    expectTimes(d, {-0.0712, -0.0709, -0.0350}, 1e-6, "with velocities");
+    ASSERT_EQ(d.point_velocity.size(), 3u);
+    EXPECT_EQ(d.point_velocity[0], Eigen::Vector3f(-2.0f, 0.5f, 0.0f));
+    EXPECT_EQ(d.point_velocity[1], Eigen::Vector3f(-2.0f, 0.5f, 0.0f));
+    EXPECT_EQ(d.point_velocity[2], Eigen::Vector3f::Zero());
+  }
+  // A cloud without them has no velocities (not zeros that would read as standing still).
+  EXPECT_TRUE(decodeClusters(velodyneClusters(), "/clusters").point_velocity.empty());
 }

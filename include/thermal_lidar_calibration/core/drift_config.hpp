@@ -70,9 +70,11 @@ struct DriftConfig {
   // they can wander metres away. A real change that large is a remount: calibrate again.
   double max_update_rotation_deg = 5.0;
   double max_update_translation_cm = 25.0;
-  // Issue 21: a changed window that the reference fits again with the camera's time offset
-  // changed by at least this (ms), pose held, explaining at least `timing_explained_fraction` of
-  // what the window's own fit gains, is a timing change (drift_timing.hpp), not a drift.
+  // Issue 21: a window the reference fits again with the camera's time offset changed by at
+  // least this (ms), pose held, is a timing change (drift_timing.hpp), not a drift: when the pose
+  // test calls the window changed, the offset must explain `timing_explained_fraction` of what the
+  // pose fit gains; otherwise it must lower the reference's loss by min_loss_ratio (people moving
+  // at different speeds make a latency change no pose change at all).
   double min_timing_change_ms = 10.0;
   double timing_explained_fraction = 0.8;
   void validate() const;   // throws std::invalid_argument naming the key and range

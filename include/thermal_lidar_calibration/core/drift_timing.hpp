@@ -4,8 +4,9 @@
 // reference no longer fits and a window test sees a "change". Before calling it an extrinsic
 // drift, the watch asks whether the reference extrinsic fits again at another time offset alone:
 // a 1-D search over the offset change with the pose held. If that explains the window about as
-// well as the window's own fit of the pose, the change is timing, reported apart from the
-// extrinsic. ROS-free.
+// well as the window's own fit of the pose (or, when the pose test sees no change, lowers the
+// loss as much as a change must), the change is timing, reported apart from the extrinsic.
+// ROS-free.
 
 #include "thermal_lidar_calibration/core/calibration_pair.hpp"
 #include "thermal_lidar_calibration/core/camera_model.hpp"
