@@ -27,7 +27,7 @@ using tlc_cli_test::RunResult;
 class CalibrateBagDetectCli : public ::testing::Test {
  protected:
   // One raw drive for the whole suite (~45k points per scan, ~500 MB: generated once, ~8 s). The
-  // README's drive (1200 frames, seed 1): 60 s drives are too short to hold the figure
+  // drive of docs/validation/accuracy.md (1200 frames, seed 1): 60 s drives are too short to hold the figure
   // on every seed (with the parked vehicles and animals, this seed's first 60 s gave 0.19 deg).
   static constexpr const char* kFrames = "1200";
   static void SetUpTestSuite() {
@@ -68,8 +68,9 @@ std::string CalibrateBagDetectCli::dir_, CalibrateBagDetectCli::raw_bag_, Calibr
 
 // A default run from raw topics (sun-heated posts, parked vehicles and animals as warm
 // confounders, image noise) on a fixed 120 s drive: within the 0.15 deg and 3 cm of the
-// truth (README, "From raw sensors": clean seed 1, 0.020 deg, 0.66 cm; the ideal topics of the
-// same drive give 0.019 deg, 0.49 cm). Over drives the spread is wider and short drives can fail.
+// truth (docs/validation/accuracy.md, "From raw sensors": clean seed 1, 0.020 deg, 0.66 cm; the
+// ideal topics of the same drive give 0.019 deg, 0.49 cm). Over drives the spread is wider and
+// short drives can fail.
 TEST_F(CalibrateBagDetectCli, CalibratesFromRawTopicsNearTheTruth) {
   const std::string out = dir_ + "/detect.yaml";
   const RunResult r = run("--bag '" + raw_bag_ + "' --detect --output '" + out + "' --truth '" + truth_ + "'");

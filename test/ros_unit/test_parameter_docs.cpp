@@ -1,5 +1,6 @@
-// config/default.yaml and README's parameter table are rendered from the parameter tables; this
-// test fails while the committed files disagree with the tables. To rewrite them:
+// config/default.yaml and the parameter reference (docs/parameters.md) are rendered from the
+// parameter tables; this test fails while the committed files disagree with the tables. To
+// rewrite them:
 //   bash scripts/update_parameter_docs.sh   (runs this test with TLC_UPDATE_PARAMETER_DOCS=1)
 
 #include "thermal_lidar_calibration/app/parameter_docs.hpp"
@@ -18,7 +19,7 @@ namespace {
 
 // Tests run in test/; the files are next to it.
 const char* const kDefaultYaml = "../config/default.yaml";
-const char* const kReadme = "../README.md";
+const char* const kParameterReference = "../docs/parameters.md";
 
 std::string readText(const std::string& path) {
   std::ifstream in(path);
@@ -43,16 +44,17 @@ TEST(ParameterDocs, DefaultYamlIsRenderedFromTheTables) {
   EXPECT_EQ(readText(kDefaultYaml), expected) << kDefaultYaml << " " << kHowToFix;
 }
 
-TEST(ParameterDocs, ReadmeTableIsRenderedFromTheTables) {
+TEST(ParameterDocs, ReferenceTableIsRenderedFromTheTables) {
   const std::string expected = tlc::renderParameterMarkdown(tlc::allParameterDocs());
-  const std::string readme = readText(kReadme);
+  const std::string reference = readText(kParameterReference);
   if (updating()) {
-    std::ofstream(kReadme) << tlc::replaceMarkedBlock(readme, tlc::kParameterTableBegin,
-                                                       tlc::kParameterTableEnd, expected);
+    std::ofstream(kParameterReference) << tlc::replaceMarkedBlock(
+        reference, tlc::kParameterTableBegin, tlc::kParameterTableEnd, expected);
   }
-  EXPECT_EQ(tlc::markedBlock(readText(kReadme), tlc::kParameterTableBegin, tlc::kParameterTableEnd),
+  EXPECT_EQ(tlc::markedBlock(readText(kParameterReference), tlc::kParameterTableBegin,
+                             tlc::kParameterTableEnd),
             expected)
-      << kReadme << " " << kHowToFix;
+      << kParameterReference << " " << kHowToFix;
 }
 
 TEST(ParameterDocs, EveryKeyOnceAcrossAllTables) {

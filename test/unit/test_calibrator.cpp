@@ -54,7 +54,7 @@ TEST(Calibrate, RefinementLowersTheSubPixelLossAndLandsCloseToTheTruth) {
   // Converged: at or below the truth's own loss (the floor of the data, not exactly zero).
   EXPECT_LE(r.loss_bilinear, bilinear.loss(fieldsafeTruth()) + 1e-3);
   // These cylinder pairs constrain the pose less than ray-cast bags; accuracy on those is
-  // measured by scripts/accuracy.sh and reported in the README.
+  // measured by scripts/accuracy.sh and reported in docs/validation/accuracy.md.
   EXPECT_LT(rotationErrorRad(r.extrinsic, fieldsafeTruth()), 0.2 * kDeg);
   EXPECT_LT(translationErrorM(r.extrinsic, fieldsafeTruth()), 0.03);
   EXPECT_EQ(r.pair_losses.size(), data.size());
