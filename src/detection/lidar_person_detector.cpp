@@ -136,6 +136,7 @@ LidarDetection LidarPersonDetector::detect(const std::vector<Eigen::Vector3f>& p
     person.range_m = shapes[k].range_m;
     person.height_m = shapes[k].top_m;
     person.width_m = shapes[k].width_m;
+    person.shape = shapes[k];
     result.people.push_back(person);
   }
   return result;

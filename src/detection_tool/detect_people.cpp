@@ -34,6 +34,10 @@ void segmentImage(const DetectPeopleOptions& o, const DetectionParameters& param
         << ": background " << result.background_level << ", person band [" << result.threshold_low << ", "
         << result.threshold_high << "]" << (result.radiometric ? " K" : "") << "; " << result.components
         << " warm regions\n";
+    for (const auto& p : result.people) {
+      err << "person " << p.id << ": fill " << p.fill << ", legs/torso " << p.leg_to_torso_width << ", mean level "
+          << p.mean_level << '\n';
+    }
     for (const auto& r : result.rejected) {
       err << "not a person (" << r.reason << "): bbox " << r.bbox.x << ' ' << r.bbox.y << ' ' << r.bbox.width << ' '
           << r.bbox.height << " area " << r.area_px << '\n';
@@ -59,11 +63,19 @@ void detectInCloud(const DetectPeopleOptions& o, const DetectionParameters& para
   if (o.explain) {
     err << std::fixed << std::setprecision(2) << "ground: tilt " << result.tilt_deg << " deg, sensor "
         << result.sensor_height_m << " m above it; " << result.objects << " objects above the ground\n";
+    const auto describe = [&](const detection::PersonShape& s) {
+      err << "range " << s.range_m << " m, height " << s.top_m << " m, lowest " << s.bottom_m << " m, width "
+          << s.width_m << " m, depth " << s.depth_m << " m, legs/torso " << s.leg_to_torso_width << ", points "
+          << s.points << '\n';
+    };
+    for (const auto& p : result.people) {
+      err << "person " << p.label << ": ";
+      describe(p.shape);
+    }
     for (const auto& r : result.rejected) {
       if (r.shape.top_m < params.lidar.person.min_height_m) continue;  // only the person-high ones
-      err << "not a person (" << detection::toString(r.verdict) << "): range " << r.shape.range_m << " m, height "
-          << r.shape.top_m << " m, lowest " << r.shape.bottom_m << " m, width " << r.shape.width_m << " m, depth "
-          << r.shape.depth_m << " m, legs/torso " << r.shape.leg_to_torso_width << ", points " << r.shape.points << '\n';
+      err << "not a person (" << detection::toString(r.verdict) << "): ";
+      describe(r.shape);
     }
   }
 }

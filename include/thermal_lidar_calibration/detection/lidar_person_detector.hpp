@@ -26,6 +26,7 @@ struct LidarPerson {
   float range_m = 0;   // horizontal distance from the sensor
   float height_m = 0;  // top above the local ground
   float width_m = 0;   // across the line of sight
+  PersonShape shape;   // everything the person test measured (detect_people --explain prints it)
 };
 
 // An object (or a part of one) that failed the person test, for tuning.
