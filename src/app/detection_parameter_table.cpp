@@ -47,6 +47,9 @@ void addThermalRows(ParameterTable<DetectionParameters>& t) {
              "morphological opening (square 2r+1) removes specks and thin bridges; 0 = none");
   th.integer("thermal_close_radius_px", &ThermalSegmenterConfig::close_radius_px, {0, 10}, "px",
              "morphological closing fills small holes and seams; 0 = none");
+  th.integer("thermal_border_margin_px", &ThermalSegmenterConfig::border_margin_px, {0, 1000}, "px",
+             "a region with a pixel in the outermost n rows or columns is cut by the image border: dropped and "
+             "counted, its shape says nothing and its LiDAR points would fall partly outside the image; 0 = keep them");
   th.integer("thermal_min_area_px", &ThermalSegmenterConfig::min_area_px, {1, 10000000}, "px",
              "smallest person region");
   th.real("thermal_max_area_fraction", &ThermalSegmenterConfig::max_area_fraction, aboveRange(0, 1), "",

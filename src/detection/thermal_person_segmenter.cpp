@@ -144,6 +144,18 @@ ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const 
   const int n = cv::connectedComponentsWithStats(binary, labels, stats, centroids, 8, CV_32S, cv::CCL_BBDT);
   result.components = n - 1;
   const double max_area = c.max_area_fraction * static_cast<double>(image.total());
+  // A region too small, too large or too short for a person is that whether or not the border
+  // cuts it (a hand split off a cut person, warm ground along the bottom edge); one of a person's
+  // size that the border cuts is dropped for that, whatever else its shape says.
+  const auto failureOf = [&](const WarmRegion& region) {
+    const std::string shape = shapeFailure(region, c, max_area);
+    if (shape == "too_small" || shape == "too_large" || shape == "too_short") return shape;
+    return cutByBorder(region.bbox, image.size(), c.border_margin_px) ? std::string("cut_by_border") : shape;
+  };
+  const auto reject = [&](const WarmRegion& region, const std::string& reason) {
+    result.rejected.push_back({region.bbox, region.area_px, reason, region.zones.legsOverTorso()});
+    if (reason == "cut_by_border") ++result.border_cut;
+  };
   std::vector<WarmRegion> kept;
   for (int k = 1; k < n; ++k) {
     WarmRegion region;
@@ -154,18 +166,18 @@ ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const 
     region.centroid = cv::Point2d(centroids.at<double>(k, 0), centroids.at<double>(k, 1));
     if (region.area_px < c.min_area_px) continue;  // specks: nothing to split or report
     region.zones = measureZoneWidths(labels, region);
-    const std::string failure = shapeFailure(region, c, max_area);
+    const std::string failure = failureOf(region);
     // A region wider than one person for its height may hold people side by side.
     const double aspect = static_cast<double>(region.bbox.height) / region.bbox.width;
     if (aspect < c.split_max_aspect && failure != "too_large" && failure != "too_short") {
       const std::vector<WarmRegion> parts = splitAtHeads(labels, opened, region, c.head_dip_fraction);
       if (parts.size() > 1) {
         for (const WarmRegion& part : parts) {
-          const std::string part_failure = shapeFailure(part, c, max_area);
+          const std::string part_failure = failureOf(part);
           if (part_failure.empty()) {
             kept.push_back(part);
           } else if (part_failure != "too_small") {
-            result.rejected.push_back({part.bbox, part.area_px, part_failure, part.zones.legsOverTorso()});
+            reject(part, part_failure);
           }
         }
         continue;
@@ -174,7 +186,7 @@ ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const 
     if (failure.empty()) {
       kept.push_back(region);
     } else {
-      result.rejected.push_back({region.bbox, region.area_px, failure, region.zones.legsOverTorso()});
+      reject(region, failure);
     }
   }
   // Ids left to right (then top to bottom), at most 255 in an 8-bit mask.

@@ -70,6 +70,12 @@ std::string shapeFailure(const WarmRegion& r, const ThermalSegmenterConfig& c, d
   return "";
 }
 
+bool cutByBorder(const cv::Rect& box, const cv::Size& size, int margin_px) {
+  if (margin_px <= 0) return false;
+  return box.x < margin_px || box.y < margin_px || box.x + box.width > size.width - margin_px ||
+         box.y + box.height > size.height - margin_px;
+}
+
 WarmRegion measureColumns(const cv::Mat& labels, int label, const cv::Rect& bbox, int x0, int x1) {
   WarmRegion part;
   part.label = label;

@@ -43,6 +43,9 @@ struct WarmRegion {
 // region.zones for a slender region's straight-sides test.
 std::string shapeFailure(const WarmRegion& region, const ThermalSegmenterConfig& config, double max_area_px);
 
+// True when `box` has a pixel within `margin_px` of the edge of an image of `size` (0: never).
+bool cutByBorder(const cv::Rect& box, const cv::Size& size, int margin_px);
+
 // The zone widths of the pixels of `region.label` in `region.bbox`: a post's are equal; a
 // person's legs together are ~0.5-0.8 of the torso (striding across the view, wider) and the neck
 // ~0.4.

@@ -24,6 +24,7 @@ void ThermalSegmenterConfig::validate() const {
   requireRange("thermal_background_step_px", background_step_px, 1, 64);
   requireRange("thermal_open_radius_px", open_radius_px, 0, 10);
   requireRange("thermal_close_radius_px", close_radius_px, 0, 10);
+  requireRange("thermal_border_margin_px", border_margin_px, 0, 1000);
   requireRange("thermal_min_area_px", min_area_px, 1, 10000000);
   requireRange("thermal_max_area_fraction", max_area_fraction, 0.0, 1.0, Bound::kOpen);
   requireRange("thermal_min_height_px", min_height_px, 1, 100000);

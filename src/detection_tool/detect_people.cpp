@@ -29,6 +29,7 @@ void segmentImage(const DetectPeopleOptions& o, const DetectionParameters& param
         << p.bbox.height << " area " << p.area_px << '\n';
   }
   if (result.people.empty()) out << "no person found\n";
+  if (result.border_cut > 0) out << "cut by the image border: " << result.border_cut << " (not reported)\n";
   if (o.explain) {
     err << std::fixed << std::setprecision(2) << (result.radiometric ? "radiometric" : "relative")
         << ": background " << result.background_level << ", person band [" << result.threshold_low << ", "

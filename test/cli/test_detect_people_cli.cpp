@@ -163,6 +163,18 @@ TEST_F(DetectPeopleCli, ConfigFileSetsTheSameKeysAsTheNodelets) {
                           path("near.yaml")).out), 1);
 }
 
+TEST_F(DetectPeopleCli, RegionsCutByTheImageBorderAreNotReportedButCounted) {
+  cv::Mat image = twoPeople16();
+  test_support::drawPerson(image, 315, 60, 120, 307.0, 301.0);  // its right half beyond the edge
+  ASSERT_TRUE(cv::imwrite(path("cut.png"), image));
+  const RunResult r = run("--image " + path("cut.png") + " --mask-out " + path("m.png") + " --explain");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(lineCount(r.out), 3) << r.out;
+  EXPECT_NE(r.out.find("\ncut by the image border: 1 (not reported)\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("not a person (cut_by_border)"), std::string::npos) << r.err;
+  EXPECT_EQ(cv::countNonZero(cv::imread(path("m.png"), cv::IMREAD_UNCHANGED) > 2), 0);
+}
+
 TEST_F(DetectPeopleCli, NobodyFoundIsExitZero) {
   ASSERT_TRUE(cv::imwrite(path("empty.png"), test_support::thermalBackground(cv::Size(160, 120), 290.0, 0.2, 4)));
   const RunResult r = run("--image " + path("empty.png") + " --mask-out " + path("m.png"));

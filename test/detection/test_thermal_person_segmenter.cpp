@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
+
 namespace thermal_lidar_calibration {
 namespace {
 
@@ -180,6 +182,39 @@ TEST(ThermalPersonSegmenter, StraightSidesTestCanBeTurnedOff) {
   ThermalSegmenterConfig off;
   off.straight_min_aspect = 100.0;
   EXPECT_EQ(ThermalPersonSegmenter(off).segment(image).people.size(), 1u);
+}
+
+TEST(ThermalPersonSegmenter, PersonCutByTheImageBorderIsDroppedAndCounted) {
+  // What fooled it on real night street images (LLVIP): people walking out of the frame, the
+  // part in view passing the shape filters as a person of its own. Here a person near the camera
+  // whose legs are below the bottom edge (head and torso in view: height / width ~2.5).
+  cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 41);
+  drawPerson(image, 200, 150, 140, 307.0, 301.0);  // wholly in view
+  drawPerson(image, 450, 400, 220, 307.0, 301.0);  // feet 108 px below the frame
+  ThermalSegmenterConfig keep;
+  keep.border_margin_px = 0;  // the detector before: both reported
+  ASSERT_EQ(ThermalPersonSegmenter(keep).segment(image).people.size(), 2u);
+  const auto result = ThermalPersonSegmenter().segment(image);
+  ASSERT_EQ(result.people.size(), 1u);
+  EXPECT_NEAR(result.people[0].centroid.x, 200, 3);
+  EXPECT_EQ(result.border_cut, 1);
+  const auto cut = std::find_if(result.rejected.begin(), result.rejected.end(),
+                                [](const auto& r) { return r.reason == "cut_by_border"; });
+  ASSERT_NE(cut, result.rejected.end());
+  EXPECT_EQ(cut->bbox.y + cut->bbox.height, kFrame.height);
+  EXPECT_GT(cut->bbox.height, 100);
+  EXPECT_EQ(cv::countNonZero(result.mask(cv::Rect(400, 380, 100, 132))), 0) << "not in the mask either";
+  // A person a few pixels clear of the border is kept: the border is not a zone. (Two rows of
+  // background: the mask's closing grows a region into a single row left at the edge.)
+  cv::Mat clear = thermalBackground(kFrame, 288.0, 0.1, 42);
+  drawPerson(clear, 320, kFrame.height - 2 - 160, 160, 307.0, 301.0);
+  const auto kept = ThermalPersonSegmenter().segment(clear);
+  EXPECT_EQ(kept.people.size(), 1u);
+  EXPECT_EQ(kept.border_cut, 0);
+  // Specks on the border are not counted as cut people.
+  cv::Mat specks = thermalBackground(kFrame, 288.0, 0.1, 43);
+  test_support::fillKelvin(specks, cv::Rect(0, 100, 3, 3), 307.0);
+  EXPECT_EQ(ThermalPersonSegmenter().segment(specks).border_cut, 0);
 }
 
 TEST(ThermalPersonSegmenter, RadiometricBandNeedsBodyTemperatureRelativeModeDoesNot) {

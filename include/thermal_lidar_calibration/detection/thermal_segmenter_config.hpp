@@ -38,6 +38,12 @@ struct ThermalSegmenterConfig {
   int open_radius_px = 1;   // thermal_open_radius_px: opening removes specks and 1-px bridges; integer [0, 10]
   int close_radius_px = 1;  // thermal_close_radius_px: closing fills small holes and seams; integer [0, 10]
 
+  // --- Regions cut by the image border: a region with a pixel in the outermost border_margin_px
+  // rows or columns may go on outside the frame, so its shape says nothing, and the LiDAR points
+  // of that person would project partly outside the image: useless for calibration. Dropped and
+  // counted (ThermalSegmentation::border_cut).
+  int border_margin_px = 1;  // thermal_border_margin_px: px; 0 = keep them; integer [0, 1000]
+
   // --- Shape filters per connected component (8-connected).
   int min_area_px = 80;             // thermal_min_area_px: pixels (a person ~45 m from a FLIR A65); integer [1, 10000000]
   double max_area_fraction = 0.1;   // thermal_max_area_fraction: of the image area (a person ~4 m from a FLIR A65); (0, 1]
