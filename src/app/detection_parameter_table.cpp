@@ -50,6 +50,20 @@ void addThermalRows(ParameterTable<DetectionParameters>& t) {
   th.integer("thermal_border_margin_px", &ThermalSegmenterConfig::border_margin_px, {0, 1000}, "px",
              "a region with a pixel in the outermost n rows or columns is cut by the image border: dropped and "
              "counted, its shape says nothing and its LiDAR points would fall partly outside the image; 0 = keep them");
+  th.real("thermal_camera_hfov_deg", &ThermalSegmenterConfig::camera_hfov_deg, aboveRange(0, 170), "deg",
+          "horizontal field of view of the thermal images as given: with thermal_max_range_m it sets the size "
+          "floor of a person region (focal length = (image width / 2) / tan(hfov / 2))", "FLIR A65: 45");
+  th.real("thermal_max_range_m", &ThermalSegmenterConfig::max_range_m, aboveRange(0, 10000), "m",
+          "farthest person the segmenter looks for: a region smaller than a person there is not one (keep it at "
+          "lidar_max_range_m: farther people are never paired)");
+  th.real("thermal_min_person_height_m", &ThermalSegmenterConfig::min_person_height_m, closedRange(0, 3), "m",
+          "height of the smallest warm silhouette of a person (an adult's head and torso: a far person's legs are "
+          "thinner than the opening removes, or as cold as the ground): a region is at least focal length * this / "
+          "thermal_max_range_m px tall");
+  th.real("thermal_min_person_area_m2", &ThermalSegmenterConfig::min_person_area_m2, closedRange(0, 5), "m^2",
+          "area of the smallest warm silhouette of a person (an adult's head and torso side on; the whole adult "
+          "shows ~0.3 m^2 side on, ~0.5 m^2 facing the camera): a region is at least (focal length / "
+          "thermal_max_range_m)^2 * this px large");
   th.integer("thermal_min_area_px", &ThermalSegmenterConfig::min_area_px, {1, 10000000}, "px",
              "smallest person region");
   th.real("thermal_max_area_fraction", &ThermalSegmenterConfig::max_area_fraction, aboveRange(0, 1), "",

@@ -143,12 +143,14 @@ ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const 
   // 640x512 mask, BBDT ~0.6 ms (bench/detection_benchmark.cpp measures the whole call).
   const int n = cv::connectedComponentsWithStats(binary, labels, stats, centroids, 8, CV_32S, cv::CCL_BBDT);
   result.components = n - 1;
-  const double max_area = c.max_area_fraction * static_cast<double>(image.total());
+  const RegionLimits limits = regionLimits(c, image.size());
+  result.min_area_px = limits.min_area_px;
+  result.min_height_px = limits.min_height_px;
   // A region too small, too large or too short for a person is that whether or not the border
   // cuts it (a hand split off a cut person, warm ground along the bottom edge); one of a person's
   // size that the border cuts is dropped for that, whatever else its shape says.
   const auto failureOf = [&](const WarmRegion& region) {
-    const std::string shape = shapeFailure(region, c, max_area);
+    const std::string shape = shapeFailure(region, c, limits);
     if (shape == "too_small" || shape == "too_large" || shape == "too_short") return shape;
     return cutByBorder(region.bbox, image.size(), c.border_margin_px) ? std::string("cut_by_border") : shape;
   };

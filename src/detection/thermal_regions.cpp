@@ -55,11 +55,21 @@ ZoneWidths measureZoneWidths(const cv::Mat& labels, const WarmRegion& r) {
   return zones;
 }
 
-std::string shapeFailure(const WarmRegion& r, const ThermalSegmenterConfig& c, double max_area_px) {
+RegionLimits regionLimits(const ThermalSegmenterConfig& c, const cv::Size& size) {
+  const double focal_px = 0.5 * size.width / std::tan(0.5 * c.camera_hfov_deg * M_PI / 180.0);
+  const double px_per_m = focal_px / c.max_range_m;  // at the farthest range
+  RegionLimits limits;
+  limits.min_area_px = std::max<double>(c.min_area_px, px_per_m * px_per_m * c.min_person_area_m2);
+  limits.max_area_px = c.max_area_fraction * static_cast<double>(size.area());
+  limits.min_height_px = std::max<double>(c.min_height_px, px_per_m * c.min_person_height_m);
+  return limits;
+}
+
+std::string shapeFailure(const WarmRegion& r, const ThermalSegmenterConfig& c, const RegionLimits& limits) {
   const int w = r.bbox.width, h = r.bbox.height;
-  if (r.area_px < c.min_area_px) return "too_small";
-  if (r.area_px > max_area_px) return "too_large";
-  if (h < c.min_height_px) return "too_short";
+  if (r.area_px < limits.min_area_px) return "too_small";
+  if (r.area_px > limits.max_area_px) return "too_large";
+  if (h < limits.min_height_px) return "too_short";
   const double aspect = static_cast<double>(h) / w;
   const double fill = static_cast<double>(r.area_px) / (static_cast<double>(w) * h);
   if (aspect < c.min_aspect) return "too_squat";

@@ -39,9 +39,19 @@ struct WarmRegion {
   ZoneWidths zones;
 };
 
-// The first shape filter a region fails, or "" for a person ("too_small" for specks); reads
-// region.zones for a slender region's straight-sides test.
-std::string shapeFailure(const WarmRegion& region, const ThermalSegmenterConfig& config, double max_area_px);
+// The size limits of a person region in an image of `size`: the pixel floors of the
+// configuration raised to the size floor from geometry (thermal_segmenter_config.hpp), and the
+// largest area.
+struct RegionLimits {
+  double min_area_px = 0;
+  double max_area_px = 0;
+  double min_height_px = 0;
+};
+RegionLimits regionLimits(const ThermalSegmenterConfig& config, const cv::Size& size);
+
+// The first shape filter a region fails, or "" for a person ("too_small" for specks and spots
+// under the size floor); reads region.zones for a slender region's straight-sides test.
+std::string shapeFailure(const WarmRegion& region, const ThermalSegmenterConfig& config, const RegionLimits& limits);
 
 // True when `box` has a pixel within `margin_px` of the edge of an image of `size` (0: never).
 bool cutByBorder(const cv::Rect& box, const cv::Size& size, int margin_px);

@@ -25,6 +25,10 @@ void ThermalSegmenterConfig::validate() const {
   requireRange("thermal_open_radius_px", open_radius_px, 0, 10);
   requireRange("thermal_close_radius_px", close_radius_px, 0, 10);
   requireRange("thermal_border_margin_px", border_margin_px, 0, 1000);
+  requireRange("thermal_camera_hfov_deg", camera_hfov_deg, 0.0, 170.0, Bound::kOpen);
+  requireRange("thermal_max_range_m", max_range_m, 0.0, 10000.0, Bound::kOpen);
+  requireRange("thermal_min_person_height_m", min_person_height_m, 0.0, 3.0);
+  requireRange("thermal_min_person_area_m2", min_person_area_m2, 0.0, 5.0);
   requireRange("thermal_min_area_px", min_area_px, 1, 10000000);
   requireRange("thermal_max_area_fraction", max_area_fraction, 0.0, 1.0, Bound::kOpen);
   requireRange("thermal_min_height_px", min_height_px, 1, 100000);

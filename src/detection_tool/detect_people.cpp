@@ -34,7 +34,8 @@ void segmentImage(const DetectPeopleOptions& o, const DetectionParameters& param
     err << std::fixed << std::setprecision(2) << (result.radiometric ? "radiometric" : "relative")
         << ": background " << result.background_level << ", person band [" << result.threshold_low << ", "
         << result.threshold_high << "]" << (result.radiometric ? " K" : "") << "; " << result.components
-        << " warm regions\n";
+        << " warm regions; a person is at least " << result.min_height_px << " px tall and "
+        << result.min_area_px << " px large\n";
     for (const auto& p : result.people) {
       err << "person " << p.id << ": fill " << p.fill << ", legs/torso " << p.leg_to_torso_width << ", mean level "
           << p.mean_level << '\n';

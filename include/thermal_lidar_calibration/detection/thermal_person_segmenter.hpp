@@ -48,6 +48,8 @@ struct ThermalSegmentation {
   double threshold_high = 0;
   int components = 0;           // connected components before the shape filters
   int border_cut = 0;           // regions of a person's size dropped because the image border cuts them
+  double min_area_px = 0;       // the size floor applied to this image (thermal_segmenter_config.hpp)
+  double min_height_px = 0;
   std::vector<RejectedRegion> rejected;  // regions of at least min_area_px that failed a filter
 };
 
