@@ -41,6 +41,10 @@ void addThermalRows(ParameterTable<DetectionParameters>& t) {
           closedRange(0, 1000), "noise sigmas",
           "relative mode: the threshold is at least this many sigmas of the pixel noise (from neighbouring-pixel "
           "differences) above the background level");
+  th.real("thermal_relative_min_core", &ThermalSegmenterConfig::relative_min_core, closedRange(0, 1), "",
+          "relative mode: the warmest 1 % of a person region's pixels (the skin) reach this fraction of the way "
+          "from the background level to the warm tail, or to the warmest person-shaped region's if that is lower; "
+          "a reflection of people in a glossy wall or a patch the day warmed stays below; 0 = off");
   th.integer("thermal_background_step_px", &ThermalSegmenterConfig::background_step_px, {1, 64}, "px",
              "background level = median of every n-th pixel in x and y");
   th.integer("thermal_open_radius_px", &ThermalSegmenterConfig::open_radius_px, {0, 10}, "px",

@@ -82,6 +82,32 @@ double paintComponent(const cv::Mat& image, const cv::Mat& labels, int label, co
   return count > 0 ? sum / static_cast<double>(count) : 0.0;
 }
 
+// Relative mode: the regions whose warmest 1 % (kCoreQuantile) stays below min_core of the way
+// from the background level to the bar (the warm tail, or the warmest region's core if lower)
+// move to `rejected` as "no_warm_core".
+constexpr double kCoreQuantile = 0.99;
+void dropRegionsWithoutWarmCore(const cv::Mat& image, const cv::Mat& labels, const FrameLevels& levels,
+                                double min_core, std::vector<WarmRegion>* kept, ThermalSegmentation* result) {
+  std::vector<double> cores;
+  double warmest = 0.0;
+  for (const WarmRegion& region : *kept) {
+    cores.push_back(regionQuantile(image, labels, region, kCoreQuantile));
+    warmest = std::max(warmest, cores.back());
+  }
+  const double bar = std::min(levels.tail, warmest);
+  result->core_threshold = levels.median + min_core * (bar - levels.median);
+  std::vector<WarmRegion> warm;
+  for (std::size_t i = 0; i < kept->size(); ++i) {
+    const WarmRegion& region = (*kept)[i];
+    if (cores[i] >= result->core_threshold) {
+      warm.push_back(region);
+    } else {
+      result->rejected.push_back({region.bbox, region.area_px, "no_warm_core", region.zones.legsOverTorso()});
+    }
+  }
+  *kept = std::move(warm);
+}
+
 }  // namespace
 
 ThermalPersonSegmenter::ThermalPersonSegmenter(const ThermalSegmenterConfig& config) : config_(config) {
@@ -190,6 +216,9 @@ ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const 
     } else {
       reject(region, failure);
     }
+  }
+  if (!result.radiometric && c.relative_min_core > 0.0 && !kept.empty()) {
+    dropRegionsWithoutWarmCore(image, labels, levels, c.relative_min_core, &kept, &result);
   }
   // Ids left to right (then top to bottom), at most 255 in an 8-bit mask.
   std::sort(kept.begin(), kept.end(), [](const WarmRegion& a, const WarmRegion& b) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace thermal_lidar_calibration {
 namespace detection {
@@ -84,6 +85,34 @@ bool cutByBorder(const cv::Rect& box, const cv::Size& size, int margin_px) {
   if (margin_px <= 0) return false;
   return box.x < margin_px || box.y < margin_px || box.x + box.width > size.width - margin_px ||
          box.y + box.height > size.height - margin_px;
+}
+
+namespace {
+
+template <typename T>
+std::vector<int> regionValues(const cv::Mat& image, const cv::Mat& labels, const WarmRegion& region) {
+  std::vector<int> values;
+  values.reserve(static_cast<std::size_t>(region.area_px));
+  const cv::Rect& b = region.bbox;
+  for (int y = b.y; y < b.y + b.height; ++y) {
+    const int* lab = labels.ptr<int>(y);
+    const T* pix = image.ptr<T>(y);
+    for (int x = b.x; x < b.x + b.width; ++x) {
+      if (lab[x] == region.label) values.push_back(pix[x]);
+    }
+  }
+  return values;
+}
+
+}  // namespace
+
+double regionQuantile(const cv::Mat& image, const cv::Mat& labels, const WarmRegion& region, double fraction) {
+  std::vector<int> values = image.type() == CV_16UC1 ? regionValues<std::uint16_t>(image, labels, region)
+                                                     : regionValues<std::uint8_t>(image, labels, region);
+  if (values.empty()) return 0.0;
+  const auto k = static_cast<std::ptrdiff_t>(std::floor(fraction * static_cast<double>(values.size() - 1)));
+  std::nth_element(values.begin(), values.begin() + k, values.end());
+  return values[static_cast<std::size_t>(k)];
 }
 
 WarmRegion measureColumns(const cv::Mat& labels, int label, const cv::Rect& bbox, int x0, int x1) {

@@ -21,6 +21,7 @@ void ThermalSegmenterConfig::validate() const {
   requireRange("thermal_relative_threshold", relative_threshold, 0.0, 1.0, Bound::kOpen);
   requireRange("thermal_relative_tail_percentile", relative_tail_percentile, 50.0, 100.0);
   requireRange("thermal_relative_min_contrast_noise", relative_min_contrast_noise, 0.0, 1000.0);
+  requireRange("thermal_relative_min_core", relative_min_core, 0.0, 1.0);
   requireRange("thermal_background_step_px", background_step_px, 1, 64);
   requireRange("thermal_open_radius_px", open_radius_px, 0, 10);
   requireRange("thermal_close_radius_px", close_radius_px, 0, 10);

@@ -35,7 +35,9 @@ void segmentImage(const DetectPeopleOptions& o, const DetectionParameters& param
         << ": background " << result.background_level << ", person band [" << result.threshold_low << ", "
         << result.threshold_high << "]" << (result.radiometric ? " K" : "") << "; " << result.components
         << " warm regions; a person is at least " << result.min_height_px << " px tall and "
-        << result.min_area_px << " px large\n";
+        << result.min_area_px << " px large";
+    if (result.core_threshold > 0) err << "; its warm core reaches " << result.core_threshold;
+    err << '\n';
     for (const auto& p : result.people) {
       err << "person " << p.id << ": fill " << p.fill << ", legs/torso " << p.leg_to_torso_width << ", mean level "
           << p.mean_level << '\n';

@@ -247,6 +247,43 @@ TEST(ThermalPersonSegmenter, WarmSpotsTooSmallForAPersonAtTheFarthestRangeAreNot
   EXPECT_EQ(big.people.size(), 1u);
 }
 
+// A radiometric frame mapped to 8 bits as a camera's AGC video would: 283 K -> 0, 310 K -> 255.
+cv::Mat agc8(const cv::Mat& counts16) {
+  cv::Mat grey;
+  const double per_count = 255.0 / ((310.0 - 283.0) / test_support::kKelvinPerCount);
+  counts16.convertTo(grey, CV_8U, per_count, -283.0 / test_support::kKelvinPerCount * per_count);
+  return grey;
+}
+
+TEST(ThermalPersonSegmenter, RelativeModeReflectionOfAPersonInAWallHasNoWarmCore) {
+  // What fooled it on real night street images (LLVIP): a glossy wall reflects the people
+  // walking past as person-shaped patches ~2/3 of the way from the background to them, above
+  // the threshold (0.45 of the way to the warm tail) but without their warm skin.
+  cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 61);
+  drawPerson(image, 200, 150, 150, 307.0, 301.0);
+  drawPerson(image, 450, 140, 150, 297.0, 295.0);  // the reflection: skin 297 K, clothing 295 K
+  const cv::Mat grey = agc8(image);
+  ThermalSegmenterConfig no_core;
+  no_core.relative_min_core = 0.0;  // the detector before: both
+  ASSERT_EQ(ThermalPersonSegmenter(no_core).segment(grey).people.size(), 2u);
+  const auto result = ThermalPersonSegmenter().segment(grey);
+  ASSERT_EQ(result.people.size(), 1u);
+  EXPECT_NEAR(result.people[0].centroid.x, 200, 3);
+  ASSERT_EQ(result.rejected.size(), 1u);
+  EXPECT_EQ(result.rejected[0].reason, "no_warm_core");
+  EXPECT_GT(result.core_threshold, result.threshold_low);
+  // Something hotter than people filling the warm tail (an engine, 0.7 % of the frame, saturated)
+  // does not raise the bar above the person: the bar is the warmest person-shaped region's core.
+  cv::Mat engine = image.clone();
+  test_support::fillKelvin(engine, cv::Rect(500, 400, 60, 40), 340.0);
+  const auto with_engine = ThermalPersonSegmenter().segment(agc8(engine));
+  ASSERT_EQ(with_engine.people.size(), 1u);
+  EXPECT_NEAR(with_engine.people[0].centroid.x, 200, 3);
+  // Radiometric images are judged by the body band, not by this.
+  EXPECT_TRUE(ThermalPersonSegmenter().segment(image).radiometric);
+  EXPECT_EQ(ThermalPersonSegmenter().segment(image).core_threshold, 0.0);
+}
+
 TEST(ThermalPersonSegmenter, RadiometricBandNeedsBodyTemperatureRelativeModeDoesNot) {
   // A person-shaped region 10 K above a cold scene but below the body band (a cold night
   // scene seen by a camera whose offset is wrong, or a warm object that is not a person).

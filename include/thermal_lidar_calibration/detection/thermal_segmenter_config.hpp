@@ -31,6 +31,14 @@ struct ThermalSegmenterConfig {
   double relative_tail_percentile = 99.7;  // thermal_relative_tail_percentile: the warm tail, %; [50, 100]
   double relative_min_contrast_noise = 6.0;  // thermal_relative_min_contrast_noise: floor of the contrast in sigmas of the pixel noise (from neighbouring-pixel differences; at least one grey level); [0, 1000]
 
+  // --- Relative mode: a person is self-heated, and their skin is the warmest thing in a night
+  // scene, so the warmest 1 % of a person's pixels reach the frame's warm tail. A region whose
+  // warm core stays well below (a reflection of people in a glossy wall, a patch of wall or
+  // ground the day warmed) is not a person. The bar is the warm tail, or the core of the warmest
+  // region that passed the shape filters if that is lower (a frame where something hotter than
+  // people, an engine or a lamp, fills the tail). Radiometric images have the body band instead.
+  double relative_min_core = 0.9;  // thermal_relative_min_core: a region's 99th percentile reaches this fraction of the way from the background level to the bar; 0 = off; [0, 1]
+
   // --- Background level: median of a sub-sampled grid of pixels.
   int background_step_px = 4;  // thermal_background_step_px: sample every n-th pixel in x and y; integer [1, 64]
 
