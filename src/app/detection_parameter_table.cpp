@@ -131,6 +131,10 @@ void addLidarRows(ParameterTable<DetectionParameters>& t) {
               "camera facing forward (+x)", "below lidar_max_azimuth_deg");
   person.real("lidar_max_azimuth_deg", &LidarPersonConfig::max_azimuth_deg, closedRange(-180, 180), "deg",
               "upper end of the bearing window");
+  person.real("lidar_view_top_margin_deg", &LidarPersonConfig::view_top_margin_deg, closedRange(0, 10), "deg",
+              "an object whose highest point is within this of the top of the scan's view (its highest beam, read "
+              "off the scan) may go on above it: a trunk or a post under an HDL-64E's +2 deg top beam; not a person. "
+              "Half the finest beam spacing of common sensors; 0 = off");
   person.real("lidar_max_object_height_m", &LidarPersonConfig::max_object_height_m, aboveRange(0, 100), "m",
               "points higher above the local ground are ignored (canopies, roofs)");
   person.real("lidar_cluster_cell_m", &LidarPersonConfig::cluster_cell_m, closedRange(0.02, 2), "m",

@@ -26,6 +26,7 @@ void LidarPersonConfig::validate() const {
   requireRange("lidar_max_range_m", max_range_m, 0.0, 1000.0, Bound::kOpen);
   requireRange("lidar_min_azimuth_deg", min_azimuth_deg, -180.0, 180.0);
   requireRange("lidar_max_azimuth_deg", max_azimuth_deg, -180.0, 180.0);
+  requireRange("lidar_view_top_margin_deg", view_top_margin_deg, 0.0, 10.0);
   requireRange("lidar_max_object_height_m", max_object_height_m, 0.0, 100.0, Bound::kOpen);
   requireRange("lidar_cluster_cell_m", cluster_cell_m, 0.02, 2.0);
   requireRange("lidar_max_split_extent_m", max_split_extent_m, 0.0, 100.0);

@@ -22,6 +22,7 @@ const char* toString(ShapeVerdict verdict) {
     case ShapeVerdict::kTooSquat: return "too_squat";
     case ShapeVerdict::kStraight: return "straight";
     case ShapeVerdict::kNarrowNoLegs: return "narrow_no_legs";
+    case ShapeVerdict::kCutByViewTop: return "cut_by_view_top";
   }
   return "unknown";
 }
@@ -95,6 +96,7 @@ ShapeVerdict judgeShape(const PersonShape& s, const LidarPersonConfig& c) {
   if (s.range_m < c.min_range_m || s.range_m > c.max_range_m) return ShapeVerdict::kOutOfRange;
   const double bearing_deg = std::atan2(s.centroid_xy.y(), s.centroid_xy.x()) * 180.0 / M_PI;
   if (bearing_deg < c.min_azimuth_deg || bearing_deg > c.max_azimuth_deg) return ShapeVerdict::kOutOfView;
+  if (c.view_top_margin_deg > 0.0 && s.view_top_gap_deg < c.view_top_margin_deg) return ShapeVerdict::kCutByViewTop;
   if (s.top_m > c.max_height_m) return ShapeVerdict::kTooTall;
   if (s.top_m < c.min_height_m) return ShapeVerdict::kTooLow;
   if (s.bottom_m > c.max_bottom_m) return ShapeVerdict::kFloating;

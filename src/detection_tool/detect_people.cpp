@@ -7,6 +7,7 @@
 #include "thermal_lidar_calibration/detection_tool/detection_files.hpp"
 #include "thermal_lidar_calibration/detection_tool/detection_views.hpp"
 
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 
@@ -66,11 +67,19 @@ void detectInCloud(const DetectPeopleOptions& o, const DetectionParameters& para
   if (result.people.empty()) out << "no person found\n";
   if (o.explain) {
     err << std::fixed << std::setprecision(2) << "ground: tilt " << result.tilt_deg << " deg, sensor "
-        << result.sensor_height_m << " m above it; " << result.objects << " objects above the ground\n";
+        << result.sensor_height_m << " m above it; " << result.objects << " objects above the ground; ";
+    if (result.view_top_found) {
+      err << "top of the view " << result.view_top_elevation_deg << " deg (origin " << result.view_top_offset_m
+          << " m up)\n";
+    } else {
+      err << "no top of the view in the scan\n";
+    }
     const auto describe = [&](const detection::PersonShape& s) {
       err << "range " << s.range_m << " m, height " << s.top_m << " m, lowest " << s.bottom_m << " m, width "
           << s.width_m << " m, depth " << s.depth_m << " m, legs/torso " << s.leg_to_torso_width << ", points "
-          << s.points << '\n';
+          << s.points;
+      if (std::isfinite(s.view_top_gap_deg)) err << ", " << s.view_top_gap_deg << " deg below the view's top";
+      err << '\n';
     };
     for (const auto& p : result.people) {
       err << "person " << p.label << ": ";

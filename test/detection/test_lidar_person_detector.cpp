@@ -198,6 +198,44 @@ TEST(LidarPersonDetector, PeopleStridingAcrossTheViewAreFoundAtEveryPhaseOfTheSt
   EXPECT_GE(missed_without_head_test, 2);  // 4 of the 32 scans at the time of writing
 }
 
+TEST(LidarPersonDetector, TrunksAndPostsCutByTheTopOfTheViewAreNotPeople) {
+  // What fooled it on a real urban scan (KITTI, HDL-64E 1.73 m up): tree trunks and posts under
+  // the top beam, which looks only 2 deg up. At 5-11 m nothing above 1.9-2.1 m is seen, so a
+  // trunk 0.4-0.6 m thick reads as a person-high object with straight sides and the person
+  // test passes it. A building front 15-40 m away rises above the top beam all along it.
+  const Terrain flat = Terrain::flat();
+  Mount kitti;
+  kitti.height_m = 1.73;
+  const SceneObject building = test_support::blobAt(flat, 0.0, -18.0, 4.0, Eigen::Vector3d(40.0, 1.5, 8.0));
+  LidarDetectorConfig no_view_top;
+  no_view_top.person.view_top_margin_deg = 0.0;  // the detector before
+  int fooled_before = 0;
+  for (double range : {5.0, 8.0, 11.0}) {
+    const std::vector<SceneObject> scene = {postAt(flat, range, 2.0, 5.0, 0.25),  // trunk
+                                            test_support::blobAt(flat, range, 2.0, 5.5, Eigen::Vector3d(2.0, 2.0, 1.5)),
+                                            personAt(flat, range + 2.0, -2.0, 1), building};
+    const CraftedScan scan = castScan(test_support::hdl64eLike(), flat, kitti, scene, 0.02, 11);
+    fooled_before += detectedOwners(scan, no_view_top).size() > 1;
+    EXPECT_EQ(detectedOwners(scan), std::vector<int>{1}) << "range " << range << " m: " << rejectionsOf(scan);
+    LidarPersonDetector detector;
+    const LidarDetection d = detector.detect(scan.points);
+    ASSERT_TRUE(d.view_top_found);
+    EXPECT_NEAR(d.view_top_elevation_deg, 2.0, 0.1);
+    EXPECT_NEAR(d.view_top_offset_m, 0.0, 0.05);
+  }
+  EXPECT_EQ(fooled_before, 3);
+  // An HDL-32E's top beam (+10.7 deg) passes far above the same trunk: nothing is cut, the trunk
+  // is judged by its shape (the crown takes the beams above 3 m).
+  const CraftedScan high = hdl32(flat, {postAt(flat, 8.0, 2.0, 5.0, 0.25), personAt(flat, 10.0, -2.0, 1), building});
+  LidarPersonDetector detector;
+  const LidarDetection d = detector.detect(high.points);
+  if (d.view_top_found) EXPECT_NEAR(d.view_top_elevation_deg, 10.67, 0.2);
+  for (const auto& r : d.rejected) EXPECT_NE(r.verdict, detection::ShapeVerdict::kCutByViewTop);
+  // An open field: nothing rises to the top beam, no top is found, nothing is judged by it.
+  EXPECT_FALSE(detector.detect(castScan(test_support::hdl64eLike(), flat, kitti, {personAt(flat, 8.0, 0.0, 1)}, 0.02, 12).points)
+                   .view_top_found);
+}
+
 TEST(LidarPersonDetector, BushesAreNotPeople) {
   const Terrain flat = Terrain::flat();
   for (double range : {5.0, 8.0, 12.0, 16.0}) {

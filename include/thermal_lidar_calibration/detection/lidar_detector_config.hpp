@@ -28,6 +28,13 @@ struct LidarPersonConfig {
   // people the camera can see: the frame gate compares the two counts.
   double min_azimuth_deg = -180.0;  // lidar_min_azimuth_deg: deg; [-180, 180], below lidar_max_azimuth_deg
   double max_azimuth_deg = 180.0;   // lidar_max_azimuth_deg: deg; [-180, 180]
+  // An object whose highest point lies within view_top_margin_deg below the top of the scan's
+  // view (detection/scan_view_top.hpp) may go on above it (a trunk, a post under an HDL-64E's
+  // +2 deg top beam): its height is unknown, it is not a person. 0.2 deg is half the finest beam
+  // spacing of common sensors (HDL-64E upper block ~0.4 deg); a person's head is below the top
+  // beam by degrees (HDL-64E at 1.73 m: 2 deg at 9 m and more nearer and farther), under an
+  // HDL-32E's or a VLP-16's top beam by 10 deg or more.
+  double view_top_margin_deg = 0.2;  // lidar_view_top_margin_deg: deg; 0 = off; [0, 10]
   double max_object_height_m = 3.0;  // lidar_max_object_height_m: points higher above the ground are ignored, m; (0, 100]
   double cluster_cell_m = 0.2;    // lidar_cluster_cell_m: 2-D grid cell joining above-ground points into objects, m; [0.02, 2]
   double max_split_extent_m = 6.0;// lidar_max_split_extent_m: objects too big for one person but at most this wide and deep are searched for people standing close together, m; [0, 100]

@@ -8,6 +8,7 @@
 #include "thermal_lidar_calibration/detection/grid_clusterer.hpp"
 #include "thermal_lidar_calibration/detection/lidar_detector_config.hpp"
 #include "thermal_lidar_calibration/detection/person_shape.hpp"
+#include "thermal_lidar_calibration/detection/scan_view_top.hpp"
 #include "thermal_lidar_calibration/detection/terrain_ground.hpp"
 
 #include <Eigen/Core>
@@ -45,6 +46,9 @@ struct LidarDetection {
   double tilt_deg = 0;         // mount tilt removed by the levelling (0 if not levelled)
   double sensor_height_m = 0;  // above the levelling plane
   int objects = 0;             // above-ground objects considered
+  bool view_top_found = false;  // the top of the scan's view (scan_view_top.hpp), when found
+  double view_top_elevation_deg = 0;
+  double view_top_offset_m = 0;
   std::vector<RejectedObject> rejected;  // objects and parts judged not a person (not split further)
 };
 
@@ -62,11 +66,14 @@ class LidarPersonDetector {
   const LidarDetectorConfig& config() const { return config_; }
 
  private:
-  void explainObject(const std::vector<int>& object, int depth, std::vector<std::vector<int>>* people,
-                     std::vector<RejectedObject>* rejected) const;
+  // Judges an object (points: the input, sensor frame) and splits it when it may hold people.
+  void explainObject(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& object, int depth,
+                     std::vector<std::vector<int>>* people, std::vector<RejectedObject>* rejected) const;
+  PersonShape shapeOf(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& object) const;
 
   LidarDetectorConfig config_;
   TerrainGround ground_;
+  ScanViewTop view_top_;
   GridClusterer grid_;
 };
 

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include <limits>
 #include <vector>
 
 namespace thermal_lidar_calibration {
@@ -29,6 +30,9 @@ struct PersonShape {
   float leg_width_m = 0;    // the zones' widths across the line of sight (0: no point)
   float torso_width_m = 0;
   float head_width_m = 0;   // above 85 % of the top
+  // Elevation of the highest point below the top of the scan's view, deg (scan_view_top.hpp);
+  // +infinity when the scan showed no top. Set by the detector, not by measureShape.
+  float view_top_gap_deg = std::numeric_limits<float>::infinity();
 };
 
 enum class ShapeVerdict {
@@ -45,6 +49,7 @@ enum class ShapeVerdict {
   kTooSquat,     // height / width too small: a bush, a vehicle
   kStraight,     // narrow, the legs as wide as the torso and no narrower head: a post, a trunk
   kNarrowNoLegs, // narrower than a person from the front, shallow, no legs narrower than the torso: a thin post
+  kCutByViewTop, // its top is at the top of the scan's view: it may go on above (a trunk, a post)
 };
 const char* toString(ShapeVerdict verdict);
 
