@@ -177,6 +177,13 @@ void addLidarRows(ParameterTable<DetectionParameters>& t) {
   person.real("lidar_narrow_leg_margin_m", &LidarPersonConfig::narrow_leg_margin_m, closedRange(0, 20), "m",
               "or its legs zone is narrower than its torso zone by lidar_post_leg_to_torso_ratio and by this much "
               "(about one column of points at 17 m: a post's zones differ by a column at most)");
+  person.real("lidar_min_person_height_m", &LidarPersonConfig::min_person_height_m, closedRange(0, 3), "m",
+              "the smallest adult looked for: a person's highest row of points is at most one row spacing (of its own "
+              "rows, at its range) below this");
+  person.real("lidar_row_gap_factor", &LidarPersonConfig::row_gap_factor, closedRange(0, 100), "row spacings",
+              "a person's lowest row is at most this many row spacings above lidar_ground_tolerance_m (legs reach the "
+              "ground) and no gap between its rows is wider (one missing row passes): a car's rear slice, a bush, a "
+              "bicycle or a fence does not; 0 = off (then no sampling test at all)");
   person.integer("lidar_min_points", &LidarPersonConfig::min_points, {1, 1000000}, "",
                  "fewest points on a person at any range");
   person.real("lidar_min_points_at_10m", &LidarPersonConfig::min_points_at_10m, closedRange(0, 1e6), "",

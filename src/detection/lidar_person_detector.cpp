@@ -45,6 +45,14 @@ PersonShape LidarPersonDetector::shapeOf(const std::vector<Eigen::Vector3f>& poi
   return shape;
 }
 
+ShapeVerdict LidarPersonDetector::judgeObject(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& object,
+                                              const PersonShape& shape) const {
+  const ShapeVerdict verdict = judgeShape(shape, config_.person);
+  if (verdict != ShapeVerdict::kPerson) return verdict;
+  // The rows are measured only for the few objects that passed everything else.
+  return judgeSampling(shape, measureRows(points, object, shape.range_m), config_.person, config_.ground.tolerance_m);
+}
+
 void LidarPersonDetector::explainObject(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& object,
                                         int depth, std::vector<std::vector<int>>* people,
                                         std::vector<RejectedObject>* rejected) const {
@@ -52,7 +60,7 @@ void LidarPersonDetector::explainObject(const std::vector<Eigen::Vector3f>& poin
   const auto& levelled = ground_.levelledPoints();
   const auto& heights = ground_.heights();
   const PersonShape shape = shapeOf(points, object);
-  const ShapeVerdict verdict = judgeShape(shape, c);
+  const ShapeVerdict verdict = judgeObject(points, object, shape);
   if (verdict == ShapeVerdict::kPerson) {
     people->push_back(object);
     return;
@@ -72,7 +80,7 @@ void LidarPersonDetector::explainObject(const std::vector<Eigen::Vector3f>& poin
     }
     for (const auto& part : parts) {
       const PersonShape part_shape = shapeOf(points, part);
-      const ShapeVerdict part_verdict = judgeShape(part_shape, c);
+      const ShapeVerdict part_verdict = judgeObject(points, part, part_shape);
       if (part_verdict == ShapeVerdict::kPerson) {
         people->push_back(part);
       } else {

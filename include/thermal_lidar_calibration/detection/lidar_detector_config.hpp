@@ -67,6 +67,16 @@ struct LidarPersonConfig {
   double narrow_width_m = 0.2;            // lidar_narrow_width_m: m; [0, 20]
   double narrow_min_depth_m = 0.18;       // lidar_narrow_min_depth_m: m; [0, 20]
   double narrow_leg_margin_m = 0.05;      // lidar_narrow_leg_margin_m: m; [0, 20]
+  // What the beams must show of an adult, for the sampling they give at the object's range (the
+  // spacing of its own rows of points, detection/person_shape.hpp): the highest row is at most
+  // one spacing below min_person_height_m (the beam above a head passes within one); the lowest
+  // row at most row_gap_factor spacings above the ground tolerance (legs reach the ground: one
+  // row may pass between them); no gap between rows wider than row_gap_factor times its
+  // neighbouring gaps (one missing row passes). A parked car's rear slice, a bush, a bicycle or
+  // a fence fails one of them at an HDL-64E's sampling (0.1 m at 15 m); at a VLP-16's (0.5 m at
+  // 15 m) the floors above decide.
+  double min_person_height_m = 1.5;  // lidar_min_person_height_m: the smallest adult looked for, m; [0, 3]
+  double row_gap_factor = 2.5;       // lidar_row_gap_factor: in row spacings; 0 = off; [0, 100]
   int min_points = 5;             // lidar_min_points: points on a person at any range; integer [1, 1000000]
   double min_points_at_10m = 20.0;// lidar_min_points_at_10m: points on a person at 10 m, scaled with (10 m / range)^2; [0, 1e6]
   void validate() const;

@@ -70,6 +70,9 @@ class LidarPersonDetector {
   void explainObject(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& object, int depth,
                      std::vector<std::vector<int>>* people, std::vector<RejectedObject>* rejected) const;
   PersonShape shapeOf(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& object) const;
+  // judgeShape, then judgeSampling on its rows for an object that passed it.
+  ShapeVerdict judgeObject(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& object,
+                           const PersonShape& shape) const;
 
   LidarDetectorConfig config_;
   TerrainGround ground_;
