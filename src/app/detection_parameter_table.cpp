@@ -88,6 +88,10 @@ void addThermalRows(ParameterTable<DetectionParameters>& t) {
           "straight sides: the median row extent of the legs zone (10-40 % of the height) over the torso zone's "
           "(50-80 %) within [r, 1/r] and no row between shoulders and head (78-92 %) narrower than r times the torso, "
           "or at most 1/(1-r) px wide (too narrow to tell); a person has legs ~0.5-0.8 of the torso or a neck ~0.4");
+  th.real("thermal_max_neck_ratio", &ThermalSegmenterConfig::max_neck_ratio, closedRange(0, 10), "",
+          "a person has a head on a neck: the narrowest row 8-22 % of a region's height from its top is at most this "
+          "fraction of the median row 20-50 % from the top (people 0.2-0.6; a warm car bonnet or a pair of legs split "
+          "off at the belt ~1); not applied to the parts of a split region; 0 = off");
   th.real("thermal_split_max_aspect", &ThermalSegmenterConfig::split_max_aspect, aboveRange(0, 100), "",
           "a region whose height / width is below this is searched for people side by side");
   th.real("thermal_head_dip_fraction", &ThermalSegmenterConfig::head_dip_fraction, aboveRange(0, 1), "",

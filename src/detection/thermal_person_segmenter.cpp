@@ -102,7 +102,7 @@ void dropRegionsWithoutWarmCore(const cv::Mat& image, const cv::Mat& labels, con
     if (cores[i] >= result->core_threshold) {
       warm.push_back(region);
     } else {
-      result->rejected.push_back({region.bbox, region.area_px, "no_warm_core", region.zones.legsOverTorso()});
+      result->rejected.push_back({region.bbox, region.area_px, "no_warm_core", legsOverTorso(region)});
     }
   }
   *kept = std::move(warm);
@@ -181,7 +181,7 @@ ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const 
     return cutByBorder(region.bbox, image.size(), c.border_margin_px) ? std::string("cut_by_border") : shape;
   };
   const auto reject = [&](const WarmRegion& region, const std::string& reason) {
-    result.rejected.push_back({region.bbox, region.area_px, reason, region.zones.legsOverTorso()});
+    result.rejected.push_back({region.bbox, region.area_px, reason, legsOverTorso(region)});
     if (reason == "cut_by_border") ++result.border_cut;
   };
   std::vector<WarmRegion> kept;
@@ -198,9 +198,11 @@ ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const 
     // A region wider than one person for its height may hold people side by side.
     const double aspect = static_cast<double>(region.bbox.height) / region.bbox.width;
     if (aspect < c.split_max_aspect && failure != "too_large" && failure != "too_short") {
-      const std::vector<WarmRegion> parts = splitAtHeads(labels, opened, region, c.head_dip_fraction);
+      std::vector<WarmRegion> parts = splitAtHeads(labels, opened, region, c.head_dip_fraction);
       if (parts.size() > 1) {
-        for (const WarmRegion& part : parts) {
+        for (WarmRegion& part : parts) {
+          part.split_part = true;
+          part.zones = measureZoneWidths(labels, part);
           const std::string part_failure = failureOf(part);
           if (part_failure.empty()) {
             kept.push_back(part);
@@ -233,7 +235,7 @@ ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const 
     person.area_px = region.area_px;
     person.centroid = region.centroid;
     person.fill = static_cast<double>(person.area_px) / person.bbox.area();
-    person.leg_to_torso_width = region.zones.legsOverTorso();
+    person.leg_to_torso_width = legsOverTorso(region);
     const auto id = static_cast<std::uint8_t>(person.id);
     // The box of a part covers only its columns, so painting the label inside it paints the part.
     const double mean = is16 ? paintComponent<std::uint16_t>(image, labels, region.label, region.bbox, id, &result.mask)

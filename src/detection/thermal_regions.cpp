@@ -77,7 +77,11 @@ std::string shapeFailure(const WarmRegion& r, const ThermalSegmenterConfig& c, c
   if (aspect > c.max_aspect) return "too_thin";
   if (fill < c.min_fill) return "too_sparse";
   if (fill > c.max_fill) return "too_full";
-  if (aspect >= c.straight_min_aspect && r.zones.straight(c.straight_ratio)) return "straight";
+  if (!r.split_part && aspect >= c.straight_min_aspect && r.zones.straight(c.straight_ratio)) return "straight";
+  if (c.max_neck_ratio > 0.0 && r.zones.neck_px > 0.0 && r.zones.torso_px > 0.0 &&
+      r.zones.neck_px > c.max_neck_ratio * r.zones.torso_px) {
+    return "no_neck";
+  }
   return "";
 }
 

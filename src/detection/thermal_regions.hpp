@@ -34,9 +34,10 @@ struct WarmRegion {
   cv::Rect bbox;
   int area_px = 0;
   cv::Point2d centroid;
-  // Measured for a whole component only: a part of a split one has cut columns that say nothing
-  // about its sides (a person half behind another loses an arm to the cut).
+  // A part of a split one has cut columns that say nothing about its sides (a person half
+  // behind another loses an arm to the cut): only its neck is judged, not its straight sides.
   ZoneWidths zones;
+  bool split_part = false;
 };
 
 // The size limits of a person region in an image of `size`: the pixel floors of the
@@ -52,6 +53,11 @@ RegionLimits regionLimits(const ThermalSegmenterConfig& config, const cv::Size& 
 // The first shape filter a region fails, or "" for a person ("too_small" for specks and spots
 // under the size floor); reads region.zones for a slender region's straight-sides test.
 std::string shapeFailure(const WarmRegion& region, const ThermalSegmenterConfig& config, const RegionLimits& limits);
+
+// The legs over torso width reported for a region: 0 for a split part (its cut sides say nothing).
+inline double legsOverTorso(const WarmRegion& region) {
+  return region.split_part ? 0.0 : region.zones.legsOverTorso();
+}
 
 // True when `box` has a pixel within `margin_px` of the edge of an image of `size` (0: never).
 bool cutByBorder(const cv::Rect& box, const cv::Size& size, int margin_px);

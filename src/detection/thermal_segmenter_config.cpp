@@ -39,6 +39,7 @@ void ThermalSegmenterConfig::validate() const {
   requireRange("thermal_max_fill", max_fill, 0.0, 1.0);
   requireRange("thermal_straight_min_aspect", straight_min_aspect, 0.0, 100.0, Bound::kOpen);
   requireRange("thermal_straight_ratio", straight_ratio, 0.0, 1.0, Bound::kOpen);
+  requireRange("thermal_max_neck_ratio", max_neck_ratio, 0.0, 10.0);
   requireRange("thermal_split_max_aspect", split_max_aspect, 0.0, 100.0, Bound::kOpen);
   requireRange("thermal_head_dip_fraction", head_dip_fraction, 0.0, 1.0, Bound::kOpen);
   requireRange("thermal_size_history", size_history, 0, 100000);

@@ -181,6 +181,7 @@ TEST(ThermalPersonSegmenter, StraightSidesTestCanBeTurnedOff) {
   test_support::drawPost(image, 420, 290, 20, 140, 3.0, 302.0);
   ThermalSegmenterConfig off;
   off.straight_min_aspect = 100.0;
+  off.max_neck_ratio = 0.0;  // a post has no neck either
   EXPECT_EQ(ThermalPersonSegmenter(off).segment(image).people.size(), 1u);
 }
 
@@ -282,6 +283,29 @@ TEST(ThermalPersonSegmenter, RelativeModeReflectionOfAPersonInAWallHasNoWarmCore
   // Radiometric images are judged by the body band, not by this.
   EXPECT_TRUE(ThermalPersonSegmenter().segment(image).radiometric);
   EXPECT_EQ(ThermalPersonSegmenter().segment(image).core_threshold, 0.0);
+}
+
+TEST(ThermalPersonSegmenter, WarmBlobsWithoutAHeadOnANeckAreNotPeople) {
+  // What fooled it on real street images (LLVIP): the warm bonnet of a parked car, wider at the
+  // top than at the bottom (53 x 123 px), and a person's legs split off at a cold belt (63 x
+  // 100 px), each passing the size, aspect and fill filters as a person of its own.
+  cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 71);
+  drawPerson(image, 120, 150, 150, 307.0, 301.0);
+  const cv::Scalar warm(std::round(test_support::countsOf(303.0)));
+  const std::vector<cv::Point> bonnet = {{300, 150}, {352, 150}, {332, 272}, {322, 272}};
+  cv::fillConvexPoly(image, bonnet, warm);
+  cv::rectangle(image, cv::Rect(480, 200, 60, 20), warm, cv::FILLED);  // hips
+  cv::rectangle(image, cv::Rect(482, 220, 22, 80), warm, cv::FILLED);  // legs
+  cv::rectangle(image, cv::Rect(516, 220, 22, 80), warm, cv::FILLED);
+  ThermalSegmenterConfig no_neck_test;
+  no_neck_test.max_neck_ratio = 0.0;  // the detector before: three people
+  ASSERT_EQ(ThermalPersonSegmenter(no_neck_test).segment(image).people.size(), 3u);
+  const auto result = ThermalPersonSegmenter().segment(image);
+  ASSERT_EQ(result.people.size(), 1u);
+  EXPECT_NEAR(result.people[0].centroid.x, 120, 3);
+  ASSERT_EQ(result.rejected.size(), 2u);
+  EXPECT_EQ(result.rejected[0].reason, "no_neck");
+  EXPECT_EQ(result.rejected[1].reason, "no_neck");
 }
 
 TEST(ThermalPersonSegmenter, RadiometricBandNeedsBodyTemperatureRelativeModeDoesNot) {

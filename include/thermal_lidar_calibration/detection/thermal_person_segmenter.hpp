@@ -35,7 +35,7 @@ struct RejectedRegion {
   cv::Rect bbox;
   int area_px = 0;
   std::string reason;  // "too_large", "too_short", "too_squat", "too_thin", "too_sparse", "too_full", "straight",
-                      // "cut_by_border", "no_warm_core", "too_short_for_range" (person_size_model.hpp)
+                      // "no_neck", "cut_by_border", "no_warm_core", "too_short_for_range" (person_size_model.hpp)
   double leg_to_torso_width = 0.0;  // as ThermalPerson's
 };
 
