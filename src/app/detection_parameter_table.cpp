@@ -183,7 +183,7 @@ void addLidarRows(ParameterTable<DetectionParameters>& t) {
               "(about one column of points at 17 m: a post's zones differ by a column at most)");
   person.real("lidar_min_person_height_m", &LidarPersonConfig::min_person_height_m, closedRange(0, 3), "m",
               "the smallest adult looked for: a person's highest row of points is at most one row spacing (of its own "
-              "rows, at its range) below this");
+              "rows, at its range) and lidar_ground_tolerance_m below this");
   person.real("lidar_row_gap_factor", &LidarPersonConfig::row_gap_factor, closedRange(0, 100), "row spacings",
               "a person's lowest row is at most this many row spacings above lidar_ground_tolerance_m (legs reach the "
               "ground) and no gap between its rows is wider (one missing row passes): a car's rear slice, a bush, a "

@@ -128,7 +128,8 @@ RowProfile measureRows(const std::vector<Eigen::Vector3f>& points, const std::ve
 ShapeVerdict judgeSampling(const PersonShape& s, const RowProfile& rows, const LidarPersonConfig& c,
                            double ground_tolerance_m) {
   if (c.row_gap_factor <= 0.0 || rows.rows < 3) return ShapeVerdict::kPerson;
-  if (s.top_m < c.min_person_height_m - rows.top_spacing_m) return ShapeVerdict::kTooLow;
+  // Heights are measured above the estimated local ground, good to its tolerance.
+  if (s.top_m < c.min_person_height_m - rows.top_spacing_m - ground_tolerance_m) return ShapeVerdict::kTooLow;
   if (s.bottom_m > ground_tolerance_m + c.row_gap_factor * rows.bottom_spacing_m) return ShapeVerdict::kFloating;
   if (rows.largest_hole > c.row_gap_factor) return ShapeVerdict::kGapInHeight;
   return ShapeVerdict::kPerson;

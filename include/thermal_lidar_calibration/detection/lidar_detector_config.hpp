@@ -69,7 +69,8 @@ struct LidarPersonConfig {
   double narrow_leg_margin_m = 0.05;      // lidar_narrow_leg_margin_m: m; [0, 20]
   // What the beams must show of an adult, for the sampling they give at the object's range (the
   // spacing of its own rows of points, detection/person_shape.hpp): the highest row is at most
-  // one spacing below min_person_height_m (the beam above a head passes within one); the lowest
+  // one spacing and the ground tolerance below min_person_height_m (the beam above a head passes
+  // within one; heights are above the estimated ground, good to its tolerance); the lowest
   // row at most row_gap_factor spacings above the ground tolerance (legs reach the ground: one
   // row may pass between them); no gap between rows wider than row_gap_factor times its
   // neighbouring gaps (one missing row passes). A parked car's rear slice, a bush, a bicycle or
