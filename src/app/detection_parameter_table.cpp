@@ -91,7 +91,7 @@ void addThermalRows(ParameterTable<DetectionParameters>& t) {
   th.real("thermal_max_neck_ratio", &ThermalSegmenterConfig::max_neck_ratio, closedRange(0, 10), "",
           "a person has a head on a neck: the narrowest row 8-22 % of a region's height from its top is at most this "
           "fraction of the median row 20-50 % from the top (people 0.2-0.6; a warm car bonnet or a pair of legs split "
-          "off at the belt ~1); not applied to the parts of a split region; 0 = off");
+          "off at the belt ~1); applied to regions less slender than thermal_straight_min_aspect; 0 = off");
   th.real("thermal_split_max_aspect", &ThermalSegmenterConfig::split_max_aspect, aboveRange(0, 100), "",
           "a region whose height / width is below this is searched for people side by side");
   th.real("thermal_head_dip_fraction", &ThermalSegmenterConfig::head_dip_fraction, aboveRange(0, 1), "",

@@ -78,7 +78,9 @@ std::string shapeFailure(const WarmRegion& r, const ThermalSegmenterConfig& c, c
   if (fill < c.min_fill) return "too_sparse";
   if (fill > c.max_fill) return "too_full";
   if (!r.split_part && aspect >= c.straight_min_aspect && r.zones.straight(c.straight_ratio)) return "straight";
-  if (c.max_neck_ratio > 0.0 && r.zones.neck_px > 0.0 && r.zones.torso_px > 0.0 &&
+  // Slender regions have the straight-sides test (with a neck of its own); a far person side on
+  // is a dozen pixels wide, where the neck is a pixel or two narrower than the torso.
+  if (c.max_neck_ratio > 0.0 && aspect < c.straight_min_aspect && r.zones.neck_px > 0.0 && r.zones.torso_px > 0.0 &&
       r.zones.neck_px > c.max_neck_ratio * r.zones.torso_px) {
     return "no_neck";
   }

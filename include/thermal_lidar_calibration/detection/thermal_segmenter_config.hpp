@@ -85,8 +85,10 @@ struct ThermalSegmenterConfig {
   // A person's vertical profile: a head on a neck narrower than the shoulders. The narrowest row
   // of the neck zone (8-22 % of the height from the top) is at most max_neck_ratio times the
   // torso zone's median row (20-50 %). People measured 0.2-0.6 (LLVIP: facing, walking, on
-  // bicycles, seen from above; a body side on ~0.5), a warm car bonnet 1.05 and a pair of legs
-  // split off at the belt 0.93. Not applied to the parts of a split region.
+  // bicycles, seen from above), a warm car bonnet 1.05 and a pair of legs split off at the belt
+  // 0.93. Applied below straight_min_aspect only: a slender region has the straight-sides test,
+  // and a far person side on is a dozen pixels wide, the neck a pixel or two narrower than the
+  // torso (the synthetic drives' people at 20 m measured up to 0.8).
   double max_neck_ratio = 0.75;      // thermal_max_neck_ratio: 0 = off; [0, 10]
 
   // --- People side by side in one region: a region whose height / width is below
