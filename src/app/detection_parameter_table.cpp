@@ -61,7 +61,7 @@ void addThermalRows(ParameterTable<DetectionParameters>& t) {
           "farthest person the segmenter looks for: a region smaller than a person there is not one (keep it at "
           "lidar_max_range_m: farther people are never paired)");
   th.real("thermal_min_person_height_m", &ThermalSegmenterConfig::min_person_height_m, closedRange(0, 3), "m",
-          "height of the smallest warm silhouette of a person (an adult's head and torso: a far person's legs are "
+          "height of the smallest warm silhouette of a person (a small adult's head and torso: a far person's legs are "
           "thinner than the opening removes, or as cold as the ground): a region is at least focal length * this / "
           "thermal_max_range_m px tall");
   th.real("thermal_min_person_area_m2", &ThermalSegmenterConfig::min_person_area_m2, closedRange(0, 5), "m^2",

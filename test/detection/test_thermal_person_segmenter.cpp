@@ -222,30 +222,32 @@ TEST(ThermalPersonSegmenter, WarmSpotsTooSmallForAPersonAtTheFarthestRangeAreNot
   // What fooled it on real night street images (LLVIP): warm spots 12-17 px wide and 17-28 px
   // tall (a lamp, a warm manhole rim, a scooter's engine), person-shaped enough for the pixel
   // floors (thermal_min_area_px 80, thermal_min_height_px 16). Through a FLIR A65 (45 deg,
-  // f = 772 px at 640 px) the head and torso of an adult (1 m) at the farthest paired range
-  // (30 m) are 26 px tall: these spots would be people 35-50 m away, never paired.
+  // f = 772 px at 640 px) the head and torso of a small adult (0.8 m) at the farthest paired
+  // range (30 m) are 21 px tall: these spots would be people 30-50 m away, never paired.
   cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 51);
-  cv::ellipse(image, cv::Point(150, 300), cv::Size(6, 12), 0, 0, 360, cv::Scalar(std::round(test_support::countsOf(306.0))),
-              cv::FILLED);  // 13 x 25 px, ~240 px
+  test_support::fillKelvin(image, cv::Rect(146, 294, 8, 14), 306.0);  // a spot 8 x 18 px with a "head"
+  test_support::fillKelvin(image, cv::Rect(148, 290, 4, 4), 306.0);
   drawPerson(image, 400, 250, 54, 307.0, 301.0);  // a 1.75 m person at 25 m
+  drawPerson(image, 520, 190, 45, 306.0, 299.0);  // at 30 m: its 2 px legs go with the opening
   ThermalSegmenterConfig pixel_floors_only;
   pixel_floors_only.max_range_m = 10000.0;  // the floors the detector had before
-  ASSERT_EQ(ThermalPersonSegmenter(pixel_floors_only).segment(image).people.size(), 2u);
+  ASSERT_EQ(ThermalPersonSegmenter(pixel_floors_only).segment(image).people.size(), 3u);
   const auto result = ThermalPersonSegmenter().segment(image);
-  ASSERT_EQ(result.people.size(), 1u);
+  ASSERT_EQ(result.people.size(), 2u);
   EXPECT_NEAR(result.people[0].centroid.x, 400, 3);
-  EXPECT_NEAR(result.min_height_px, 772.5 * 1.0 / 30.0, 0.5);
+  EXPECT_NEAR(result.people[1].centroid.x, 520, 3);
+  EXPECT_NEAR(result.min_height_px, 772.5 * 0.8 / 30.0, 0.5);
   EXPECT_NEAR(result.min_area_px, (772.5 / 30.0) * (772.5 / 30.0) * 0.15, 1.0);
   // The floor follows the lens: through a 90 deg lens (f = 320 px) the spot is a person's size at
   // 25 m; and the image's width: the same 45 deg lens at 1280 px doubles it.
   ThermalSegmenterConfig wide;
   wide.camera_hfov_deg = 90.0;
-  EXPECT_EQ(ThermalPersonSegmenter(wide).segment(image).people.size(), 2u);
+  EXPECT_EQ(ThermalPersonSegmenter(wide).segment(image).people.size(), 3u);
   cv::Mat doubled;
   cv::resize(image, doubled, cv::Size(), 2.0, 2.0, cv::INTER_NEAREST);
   const auto big = ThermalPersonSegmenter().segment(doubled);
-  EXPECT_NEAR(big.min_height_px, 2 * 772.5 * 1.0 / 30.0, 1.0);
-  EXPECT_EQ(big.people.size(), 1u);
+  EXPECT_NEAR(big.min_height_px, 2 * 772.5 * 0.8 / 30.0, 1.0);
+  EXPECT_EQ(big.people.size(), 2u);
 }
 
 // A radiometric frame mapped to 8 bits as a camera's AGC video would: 283 K -> 0, 310 K -> 255.

@@ -57,13 +57,13 @@ struct ThermalSegmenterConfig {
   // the focal length f = (image width / 2) / tan(hfov / 2): a region at least
   // f * min_person_height_m / max_range_m px tall and f^2 * min_person_area_m2 / max_range_m^2 px
   // large (thermal_min_height_px and thermal_min_area_px stay as floors of their own). A warm spot
-  // below it is no person at any range that matters. The smallest silhouette is an adult's head
-  // and torso (1 m tall, 0.15 m^2 side on): the legs of a far person are only 3-4 px wide and
-  // may go with the opening, or be as cold as the ground. (A standing adult shows ~0.5 m^2 facing
-  // the camera, ~0.3 m^2 side on.)
+  // below it is no person at any range that matters. The smallest silhouette is the head and
+  // torso of a small adult (0.8 m tall, 0.15 m^2 side on): the legs of a far person are only 2-4
+  // px wide and may go with the opening, or be as cold as the ground. (A standing adult shows
+  // ~0.5 m^2 facing the camera, ~0.3 m^2 side on.)
   double camera_hfov_deg = 45.0;      // thermal_camera_hfov_deg: horizontal field of view of the images as given, deg (FLIR A65: 45); (0, 170] (a pinhole view)
   double max_range_m = 30.0;          // thermal_max_range_m: farthest person to find, m (lidar_max_range_m's default); (0, 10000]
-  double min_person_height_m = 1.0;   // thermal_min_person_height_m: height of the smallest warm silhouette, m; [0, 3]
+  double min_person_height_m = 0.8;   // thermal_min_person_height_m: height of the smallest warm silhouette, m; [0, 3]
   double min_person_area_m2 = 0.15;   // thermal_min_person_area_m2: area of the smallest warm silhouette, m^2; [0, 5]
 
   // --- Shape filters per connected component (8-connected).
