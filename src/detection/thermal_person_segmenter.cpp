@@ -108,6 +108,65 @@ void dropRegionsWithoutWarmCore(const cv::Mat& image, const cv::Mat& labels, con
   *kept = std::move(warm);
 }
 
+// The components of `labels` (stats and centroids as connectedComponentsWithStats gives them),
+// judged one by one and split at heads where a region is wide enough to hold people side by
+// side: the person regions, in label order; the others go to result->rejected.
+std::vector<WarmRegion> judgeComponents(const ThermalSegmenterConfig& c, const cv::Size& size, const cv::Mat& labels,
+                                        const cv::Mat& opened, const cv::Mat& stats, const cv::Mat& centroids,
+                                        ThermalSegmentation* result) {
+  const int n = stats.rows;
+  const RegionLimits limits = regionLimits(c, size);
+  result->min_area_px = limits.min_area_px;
+  result->min_height_px = limits.min_height_px;
+  // A region too small, too large or too short for a person is that whether or not the border
+  // cuts it (a hand split off a cut person, warm ground along the bottom edge); one of a person's
+  // size that the border cuts is dropped for that, whatever else its shape says.
+  const auto failureOf = [&](const WarmRegion& region) {
+    const std::string shape = shapeFailure(region, c, limits);
+    if (shape == "too_small" || shape == "too_large" || shape == "too_short") return shape;
+    return cutByBorder(region.bbox, size, c.border_margin_px) ? std::string("cut_by_border") : shape;
+  };
+  const auto reject = [&](const WarmRegion& region, const std::string& reason) {
+    result->rejected.push_back({region.bbox, region.area_px, reason, legsOverTorso(region)});
+    if (reason == "cut_by_border") ++result->border_cut;
+  };
+  std::vector<WarmRegion> kept;
+  for (int k = 1; k < n; ++k) {
+    WarmRegion region;
+    region.label = k;
+    region.bbox = cv::Rect(stats.at<int>(k, cv::CC_STAT_LEFT), stats.at<int>(k, cv::CC_STAT_TOP),
+                           stats.at<int>(k, cv::CC_STAT_WIDTH), stats.at<int>(k, cv::CC_STAT_HEIGHT));
+    region.area_px = stats.at<int>(k, cv::CC_STAT_AREA);
+    region.centroid = cv::Point2d(centroids.at<double>(k, 0), centroids.at<double>(k, 1));
+    if (region.area_px < c.min_area_px) continue;  // specks: nothing to split or report
+    region.zones = measureZoneWidths(labels, region);
+    const std::string failure = failureOf(region);
+    // A region wider than one person for its height may hold people side by side.
+    const double aspect = static_cast<double>(region.bbox.height) / region.bbox.width;
+    if (aspect < c.split_max_aspect && failure != "too_large" && failure != "too_short") {
+      std::vector<WarmRegion> parts = splitAtHeads(labels, opened, region, c.head_dip_fraction);
+      if (parts.size() > 1) {
+        for (WarmRegion& part : parts) {
+          part.split_part = true;
+          part.zones = measureZoneWidths(labels, part);
+          const std::string part_failure = failureOf(part);
+          if (part_failure.empty()) {
+            kept.push_back(part);
+          } else if (part_failure != "too_small") {
+            reject(part, part_failure);
+          }
+        }
+        continue;
+      }
+    }
+    if (failure.empty()) {
+      kept.push_back(region);
+    } else {
+      reject(region, failure);
+    }
+  }
+  return kept;
+}
 }  // namespace
 
 ThermalPersonSegmenter::ThermalPersonSegmenter(const ThermalSegmenterConfig& config) : config_(config) {
@@ -169,56 +228,7 @@ ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const 
   // 640x512 mask, BBDT ~0.6 ms (bench/detection_benchmark.cpp measures the whole call).
   const int n = cv::connectedComponentsWithStats(binary, labels, stats, centroids, 8, CV_32S, cv::CCL_BBDT);
   result.components = n - 1;
-  const RegionLimits limits = regionLimits(c, image.size());
-  result.min_area_px = limits.min_area_px;
-  result.min_height_px = limits.min_height_px;
-  // A region too small, too large or too short for a person is that whether or not the border
-  // cuts it (a hand split off a cut person, warm ground along the bottom edge); one of a person's
-  // size that the border cuts is dropped for that, whatever else its shape says.
-  const auto failureOf = [&](const WarmRegion& region) {
-    const std::string shape = shapeFailure(region, c, limits);
-    if (shape == "too_small" || shape == "too_large" || shape == "too_short") return shape;
-    return cutByBorder(region.bbox, image.size(), c.border_margin_px) ? std::string("cut_by_border") : shape;
-  };
-  const auto reject = [&](const WarmRegion& region, const std::string& reason) {
-    result.rejected.push_back({region.bbox, region.area_px, reason, legsOverTorso(region)});
-    if (reason == "cut_by_border") ++result.border_cut;
-  };
-  std::vector<WarmRegion> kept;
-  for (int k = 1; k < n; ++k) {
-    WarmRegion region;
-    region.label = k;
-    region.bbox = cv::Rect(stats.at<int>(k, cv::CC_STAT_LEFT), stats.at<int>(k, cv::CC_STAT_TOP),
-                           stats.at<int>(k, cv::CC_STAT_WIDTH), stats.at<int>(k, cv::CC_STAT_HEIGHT));
-    region.area_px = stats.at<int>(k, cv::CC_STAT_AREA);
-    region.centroid = cv::Point2d(centroids.at<double>(k, 0), centroids.at<double>(k, 1));
-    if (region.area_px < c.min_area_px) continue;  // specks: nothing to split or report
-    region.zones = measureZoneWidths(labels, region);
-    const std::string failure = failureOf(region);
-    // A region wider than one person for its height may hold people side by side.
-    const double aspect = static_cast<double>(region.bbox.height) / region.bbox.width;
-    if (aspect < c.split_max_aspect && failure != "too_large" && failure != "too_short") {
-      std::vector<WarmRegion> parts = splitAtHeads(labels, opened, region, c.head_dip_fraction);
-      if (parts.size() > 1) {
-        for (WarmRegion& part : parts) {
-          part.split_part = true;
-          part.zones = measureZoneWidths(labels, part);
-          const std::string part_failure = failureOf(part);
-          if (part_failure.empty()) {
-            kept.push_back(part);
-          } else if (part_failure != "too_small") {
-            reject(part, part_failure);
-          }
-        }
-        continue;
-      }
-    }
-    if (failure.empty()) {
-      kept.push_back(region);
-    } else {
-      reject(region, failure);
-    }
-  }
+  std::vector<WarmRegion> kept = judgeComponents(c, image.size(), labels, opened, stats, centroids, &result);
   if (!result.radiometric && c.relative_min_core > 0.0 && !kept.empty()) {
     dropRegionsWithoutWarmCore(image, labels, levels, c.relative_min_core, &kept, &result);
   }
