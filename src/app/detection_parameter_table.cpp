@@ -41,12 +41,33 @@ void addThermalRows(ParameterTable<DetectionParameters>& t) {
           closedRange(0, 1000), "noise sigmas",
           "relative mode: the threshold is at least this many sigmas of the pixel noise (from neighbouring-pixel "
           "differences) above the background level");
+  th.real("thermal_relative_min_core", &ThermalSegmenterConfig::relative_min_core, closedRange(0, 1), "",
+          "relative mode: the warmest 1 % of a person region's pixels (the skin) reach this fraction of the way "
+          "from the background level to the warm tail, or to the warmest person-shaped region's if that is lower; "
+          "a reflection of people in a glossy wall or a patch the day warmed stays below; 0 = off");
   th.integer("thermal_background_step_px", &ThermalSegmenterConfig::background_step_px, {1, 64}, "px",
              "background level = median of every n-th pixel in x and y");
   th.integer("thermal_open_radius_px", &ThermalSegmenterConfig::open_radius_px, {0, 10}, "px",
              "morphological opening (square 2r+1) removes specks and thin bridges; 0 = none");
   th.integer("thermal_close_radius_px", &ThermalSegmenterConfig::close_radius_px, {0, 10}, "px",
              "morphological closing fills small holes and seams; 0 = none");
+  th.integer("thermal_border_margin_px", &ThermalSegmenterConfig::border_margin_px, {0, 1000}, "px",
+             "a region with a pixel in the outermost n rows or columns is cut by the image border: dropped and "
+             "counted, its shape says nothing and its LiDAR points would fall partly outside the image; 0 = keep them");
+  th.real("thermal_camera_hfov_deg", &ThermalSegmenterConfig::camera_hfov_deg, aboveRange(0, 170), "deg",
+          "horizontal field of view of the thermal images as given: with thermal_max_range_m it sets the size "
+          "floor of a person region (focal length = (image width / 2) / tan(hfov / 2))", "FLIR A65: 45");
+  th.real("thermal_max_range_m", &ThermalSegmenterConfig::max_range_m, aboveRange(0, 10000), "m",
+          "farthest person the segmenter looks for: a region smaller than a person there is not one (keep it at "
+          "lidar_max_range_m: farther people are never paired)");
+  th.real("thermal_min_person_height_m", &ThermalSegmenterConfig::min_person_height_m, closedRange(0, 3), "m",
+          "height of the smallest warm silhouette of a person (a small adult's head and torso: a far person's legs are "
+          "thinner than the opening removes, or as cold as the ground): a region is at least focal length * this / "
+          "thermal_max_range_m px tall");
+  th.real("thermal_min_person_area_m2", &ThermalSegmenterConfig::min_person_area_m2, closedRange(0, 5), "m^2",
+          "area of the smallest warm silhouette of a person (an adult's head and torso side on; the whole adult "
+          "shows ~0.3 m^2 side on, ~0.5 m^2 facing the camera): a region is at least (focal length / "
+          "thermal_max_range_m)^2 * this px large");
   th.integer("thermal_min_area_px", &ThermalSegmenterConfig::min_area_px, {1, 10000000}, "px",
              "smallest person region");
   th.real("thermal_max_area_fraction", &ThermalSegmenterConfig::max_area_fraction, aboveRange(0, 1), "",
@@ -67,6 +88,10 @@ void addThermalRows(ParameterTable<DetectionParameters>& t) {
           "straight sides: the median row extent of the legs zone (10-40 % of the height) over the torso zone's "
           "(50-80 %) within [r, 1/r] and no row between shoulders and head (78-92 %) narrower than r times the torso, "
           "or at most 1/(1-r) px wide (too narrow to tell); a person has legs ~0.5-0.8 of the torso or a neck ~0.4");
+  th.real("thermal_max_neck_ratio", &ThermalSegmenterConfig::max_neck_ratio, closedRange(0, 10), "",
+          "a person has a head on a neck: the narrowest row 8-22 % of a region's height from its top is at most this "
+          "fraction of the median row 20-50 % from the top (people 0.2-0.6; a warm car bonnet or a pair of legs split "
+          "off at the belt ~1); applied to regions less slender than thermal_straight_min_aspect; 0 = off");
   th.real("thermal_split_max_aspect", &ThermalSegmenterConfig::split_max_aspect, aboveRange(0, 100), "",
           "a region whose height / width is below this is searched for people side by side");
   th.real("thermal_head_dip_fraction", &ThermalSegmenterConfig::head_dip_fraction, aboveRange(0, 1), "",
@@ -110,6 +135,10 @@ void addLidarRows(ParameterTable<DetectionParameters>& t) {
               "camera facing forward (+x)", "below lidar_max_azimuth_deg");
   person.real("lidar_max_azimuth_deg", &LidarPersonConfig::max_azimuth_deg, closedRange(-180, 180), "deg",
               "upper end of the bearing window");
+  person.real("lidar_view_top_margin_deg", &LidarPersonConfig::view_top_margin_deg, closedRange(0, 10), "deg",
+              "an object whose highest point is within this of the top of the scan's view (its highest beam, read "
+              "off the scan) may go on above it: a trunk or a post under an HDL-64E's +2 deg top beam; not a person. "
+              "Half the finest beam spacing of common sensors; 0 = off");
   person.real("lidar_max_object_height_m", &LidarPersonConfig::max_object_height_m, aboveRange(0, 100), "m",
               "points higher above the local ground are ignored (canopies, roofs)");
   person.real("lidar_cluster_cell_m", &LidarPersonConfig::cluster_cell_m, closedRange(0.02, 2), "m",
@@ -152,6 +181,13 @@ void addLidarRows(ParameterTable<DetectionParameters>& t) {
   person.real("lidar_narrow_leg_margin_m", &LidarPersonConfig::narrow_leg_margin_m, closedRange(0, 20), "m",
               "or its legs zone is narrower than its torso zone by lidar_post_leg_to_torso_ratio and by this much "
               "(about one column of points at 17 m: a post's zones differ by a column at most)");
+  person.real("lidar_min_person_height_m", &LidarPersonConfig::min_person_height_m, closedRange(0, 3), "m",
+              "the smallest adult looked for: a person's highest row of points is at most one row spacing (of its own "
+              "rows, at its range) and lidar_ground_tolerance_m below this");
+  person.real("lidar_row_gap_factor", &LidarPersonConfig::row_gap_factor, closedRange(0, 100), "row spacings",
+              "a person's lowest row is at most this many row spacings above lidar_ground_tolerance_m (legs reach the "
+              "ground) and no gap between its rows is wider (one missing row passes): a car's rear slice, a bush, a "
+              "bicycle or a fence does not; 0 = off (then no sampling test at all)");
   person.integer("lidar_min_points", &LidarPersonConfig::min_points, {1, 1000000}, "",
                  "fewest points on a person at any range");
   person.real("lidar_min_points_at_10m", &LidarPersonConfig::min_points_at_10m, closedRange(0, 1e6), "",

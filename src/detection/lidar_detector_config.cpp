@@ -26,6 +26,7 @@ void LidarPersonConfig::validate() const {
   requireRange("lidar_max_range_m", max_range_m, 0.0, 1000.0, Bound::kOpen);
   requireRange("lidar_min_azimuth_deg", min_azimuth_deg, -180.0, 180.0);
   requireRange("lidar_max_azimuth_deg", max_azimuth_deg, -180.0, 180.0);
+  requireRange("lidar_view_top_margin_deg", view_top_margin_deg, 0.0, 10.0);
   requireRange("lidar_max_object_height_m", max_object_height_m, 0.0, 100.0, Bound::kOpen);
   requireRange("lidar_cluster_cell_m", cluster_cell_m, 0.02, 2.0);
   requireRange("lidar_max_split_extent_m", max_split_extent_m, 0.0, 100.0);
@@ -44,6 +45,8 @@ void LidarPersonConfig::validate() const {
   requireRange("lidar_narrow_width_m", narrow_width_m, 0.0, 20.0);
   requireRange("lidar_narrow_min_depth_m", narrow_min_depth_m, 0.0, 20.0);
   requireRange("lidar_narrow_leg_margin_m", narrow_leg_margin_m, 0.0, 20.0);
+  requireRange("lidar_min_person_height_m", min_person_height_m, 0.0, 3.0);
+  requireRange("lidar_row_gap_factor", row_gap_factor, 0.0, 100.0);
   requireRange("lidar_min_points", min_points, 1, 1000000);
   requireRange("lidar_min_points_at_10m", min_points_at_10m, 0.0, 1e6);
   checks::requireOrdered("lidar_min_range_m", min_range_m, "lidar_max_range_m", max_range_m, true);

@@ -21,8 +21,10 @@ const LidarDetectorConfig& validated(const LidarDetectorConfig& config) {
 
 // A failed person test that splitting may cure: the object is bigger than one person.
 bool mayHoldPeople(ShapeVerdict verdict, const PersonShape& shape, const LidarPersonConfig& c) {
+  // A tree cut by the view's top with a person beside it: the person is a part of its own.
   const bool too_big = verdict == ShapeVerdict::kTooWide || verdict == ShapeVerdict::kTooDeep ||
-                       verdict == ShapeVerdict::kTooTall || verdict == ShapeVerdict::kTooSquat;
+                       verdict == ShapeVerdict::kTooTall || verdict == ShapeVerdict::kTooSquat ||
+                       verdict == ShapeVerdict::kCutByViewTop;
   return too_big && shape.width_m <= c.max_split_extent_m && shape.depth_m <= c.max_split_extent_m &&
          shape.top_m >= c.min_height_m;
 }
@@ -34,14 +36,31 @@ LidarPersonDetector::LidarPersonDetector(const LidarDetectorConfig& config)
       ground_(config.ground),
       grid_(config.person.cluster_cell_m, config.person.max_range_m + kRangeMarginM) {}
 
-void LidarPersonDetector::explainObject(const std::vector<int>& object, int depth,
-                                        std::vector<std::vector<int>>* people,
+PersonShape LidarPersonDetector::shapeOf(const std::vector<Eigen::Vector3f>& points,
+                                         const std::vector<int>& object) const {
+  PersonShape shape = measureShape(ground_.levelledPoints(), ground_.heights(), object);
+  if (config_.person.view_top_margin_deg > 0.0) {
+    shape.view_top_gap_deg = static_cast<float>(view_top_.gapBelowDeg(points, object));
+  }
+  return shape;
+}
+
+ShapeVerdict LidarPersonDetector::judgeObject(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& object,
+                                              const PersonShape& shape) const {
+  const ShapeVerdict verdict = judgeShape(shape, config_.person);
+  if (verdict != ShapeVerdict::kPerson) return verdict;
+  // The rows are measured only for the few objects that passed everything else.
+  return judgeSampling(shape, measureRows(points, object, shape.range_m), config_.person, config_.ground.tolerance_m);
+}
+
+void LidarPersonDetector::explainObject(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& object,
+                                        int depth, std::vector<std::vector<int>>* people,
                                         std::vector<RejectedObject>* rejected) const {
   const LidarPersonConfig& c = config_.person;
   const auto& levelled = ground_.levelledPoints();
   const auto& heights = ground_.heights();
-  const PersonShape shape = measureShape(levelled, heights, object);
-  const ShapeVerdict verdict = judgeShape(shape, c);
+  const PersonShape shape = shapeOf(points, object);
+  const ShapeVerdict verdict = judgeObject(points, object, shape);
   if (verdict == ShapeVerdict::kPerson) {
     people->push_back(object);
     return;
@@ -60,8 +79,8 @@ void LidarPersonDetector::explainObject(const std::vector<int>& object, int dept
       return;
     }
     for (const auto& part : parts) {
-      const PersonShape part_shape = measureShape(levelled, heights, part);
-      const ShapeVerdict part_verdict = judgeShape(part_shape, c);
+      const PersonShape part_shape = shapeOf(points, part);
+      const ShapeVerdict part_verdict = judgeObject(points, part, part_shape);
       if (part_verdict == ShapeVerdict::kPerson) {
         people->push_back(part);
       } else {
@@ -70,7 +89,7 @@ void LidarPersonDetector::explainObject(const std::vector<int>& object, int dept
     }
     return;
   }
-  for (const auto& part : parts) explainObject(part, depth + 1, people, rejected);
+  for (const auto& part : parts) explainObject(points, part, depth + 1, people, rejected);
 }
 
 LidarDetection LidarPersonDetector::detect(const std::vector<Eigen::Vector3f>& points) {
@@ -78,6 +97,12 @@ LidarDetection LidarPersonDetector::detect(const std::vector<Eigen::Vector3f>& p
   const double reach = c.max_range_m + kRangeMarginM;
   ground_.estimate(points, reach);
   LidarDetection result;
+  if (c.view_top_margin_deg > 0.0) {
+    view_top_.fit(points, ground_.heights(), static_cast<float>(config_.ground.tolerance_m));
+    result.view_top_found = view_top_.found();
+    result.view_top_elevation_deg = view_top_.elevationDeg();
+    result.view_top_offset_m = view_top_.offsetM();
+  }
   result.tilt_deg = ground_.tiltDeg();
   result.sensor_height_m = ground_.sensorHeightM();
 
@@ -101,14 +126,14 @@ LidarDetection LidarPersonDetector::detect(const std::vector<Eigen::Vector3f>& p
   for (const auto& object : objects) {
     // Cheap rejections before any measuring: too few points for a person anywhere in range.
     if (static_cast<int>(object.size()) < c.min_points) continue;
-    explainObject(object, 0, &people, &result.rejected);
+    explainObject(points, object, 0, &people, &result.rejected);
   }
 
   // Labels nearest first (ties by first point index): deterministic whatever the input order.
   std::vector<std::pair<float, int>> order;
   std::vector<PersonShape> shapes;
   for (std::size_t k = 0; k < people.size(); ++k) {
-    shapes.push_back(measureShape(levelled, heights, people[k]));
+    shapes.push_back(shapeOf(points, people[k]));
     order.emplace_back(shapes.back().range_m, static_cast<int>(k));
   }
   std::sort(order.begin(), order.end(), [&](const auto& a, const auto& b) {
@@ -136,6 +161,7 @@ LidarDetection LidarPersonDetector::detect(const std::vector<Eigen::Vector3f>& p
     person.range_m = shapes[k].range_m;
     person.height_m = shapes[k].top_m;
     person.width_m = shapes[k].width_m;
+    person.shape = shapes[k];
     result.people.push_back(person);
   }
   return result;

@@ -22,6 +22,8 @@ const char* toString(ShapeVerdict verdict) {
     case ShapeVerdict::kTooSquat: return "too_squat";
     case ShapeVerdict::kStraight: return "straight";
     case ShapeVerdict::kNarrowNoLegs: return "narrow_no_legs";
+    case ShapeVerdict::kCutByViewTop: return "cut_by_view_top";
+    case ShapeVerdict::kGapInHeight: return "gap_in_height";
   }
   return "unknown";
 }
@@ -86,6 +88,53 @@ PersonShape measureShape(const std::vector<Eigen::Vector3f>& levelled, const std
   return shape;
 }
 
+RowProfile measureRows(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& indices, float range_m) {
+  constexpr float kRowBreakRad = 0.1f * static_cast<float>(M_PI) / 180.f;
+  std::vector<float> elevation;
+  elevation.reserve(indices.size());
+  for (int i : indices) {
+    const Eigen::Vector3f& p = points[i];
+    elevation.push_back(std::atan2(p.z(), std::hypot(p.x(), p.y())));
+  }
+  std::sort(elevation.begin(), elevation.end());
+  std::vector<float> centres;  // ascending
+  float sum = 0;
+  int count = 0;
+  for (std::size_t k = 0; k < elevation.size(); ++k) {
+    if (k > 0 && elevation[k] - elevation[k - 1] > kRowBreakRad) {
+      centres.push_back(sum / count);
+      sum = 0;
+      count = 0;
+    }
+    sum += elevation[k];
+    ++count;
+  }
+  if (count > 0) centres.push_back(sum / count);
+  RowProfile rows;
+  rows.rows = static_cast<int>(centres.size());
+  if (rows.rows < 3) return rows;
+  std::vector<float> gaps;
+  for (std::size_t k = 1; k < centres.size(); ++k) gaps.push_back(centres[k] - centres[k - 1]);
+  for (std::size_t k = 0; k < gaps.size(); ++k) {
+    const float below = k > 0 ? gaps[k - 1] : 0.f;
+    const float above = k + 1 < gaps.size() ? gaps[k + 1] : 0.f;
+    rows.largest_hole = std::max(rows.largest_hole, gaps[k] / std::max(below, above));
+  }
+  rows.bottom_spacing_m = range_m * std::tan(gaps.front());
+  rows.top_spacing_m = range_m * std::tan(gaps.back());
+  return rows;
+}
+
+ShapeVerdict judgeSampling(const PersonShape& s, const RowProfile& rows, const LidarPersonConfig& c,
+                           double ground_tolerance_m) {
+  if (c.row_gap_factor <= 0.0 || rows.rows < 3) return ShapeVerdict::kPerson;
+  // Heights are measured above the estimated local ground, good to its tolerance.
+  if (s.top_m < c.min_person_height_m - rows.top_spacing_m - ground_tolerance_m) return ShapeVerdict::kTooLow;
+  if (s.bottom_m > ground_tolerance_m + c.row_gap_factor * rows.bottom_spacing_m) return ShapeVerdict::kFloating;
+  if (rows.largest_hole > c.row_gap_factor) return ShapeVerdict::kGapInHeight;
+  return ShapeVerdict::kPerson;
+}
+
 double minPersonPoints(double range_m, const LidarPersonConfig& config) {
   const double r = std::max(range_m, 0.1);
   return std::max(static_cast<double>(config.min_points), config.min_points_at_10m * (10.0 / r) * (10.0 / r));
@@ -95,6 +144,7 @@ ShapeVerdict judgeShape(const PersonShape& s, const LidarPersonConfig& c) {
   if (s.range_m < c.min_range_m || s.range_m > c.max_range_m) return ShapeVerdict::kOutOfRange;
   const double bearing_deg = std::atan2(s.centroid_xy.y(), s.centroid_xy.x()) * 180.0 / M_PI;
   if (bearing_deg < c.min_azimuth_deg || bearing_deg > c.max_azimuth_deg) return ShapeVerdict::kOutOfView;
+  if (c.view_top_margin_deg > 0.0 && s.view_top_gap_deg < c.view_top_margin_deg) return ShapeVerdict::kCutByViewTop;
   if (s.top_m > c.max_height_m) return ShapeVerdict::kTooTall;
   if (s.top_m < c.min_height_m) return ShapeVerdict::kTooLow;
   if (s.bottom_m > c.max_bottom_m) return ShapeVerdict::kFloating;

@@ -82,6 +82,91 @@ double paintComponent(const cv::Mat& image, const cv::Mat& labels, int label, co
   return count > 0 ? sum / static_cast<double>(count) : 0.0;
 }
 
+// Relative mode: the regions whose warmest 1 % (kCoreQuantile) stays below min_core of the way
+// from the background level to the bar (the warm tail, or the warmest region's core if lower)
+// move to `rejected` as "no_warm_core".
+constexpr double kCoreQuantile = 0.99;
+void dropRegionsWithoutWarmCore(const cv::Mat& image, const cv::Mat& labels, const FrameLevels& levels,
+                                double min_core, std::vector<WarmRegion>* kept, ThermalSegmentation* result) {
+  std::vector<double> cores;
+  double warmest = 0.0;
+  for (const WarmRegion& region : *kept) {
+    cores.push_back(regionQuantile(image, labels, region, kCoreQuantile));
+    warmest = std::max(warmest, cores.back());
+  }
+  const double bar = std::min(levels.tail, warmest);
+  result->core_threshold = levels.median + min_core * (bar - levels.median);
+  std::vector<WarmRegion> warm;
+  for (std::size_t i = 0; i < kept->size(); ++i) {
+    const WarmRegion& region = (*kept)[i];
+    if (cores[i] >= result->core_threshold) {
+      warm.push_back(region);
+    } else {
+      result->rejected.push_back({region.bbox, region.area_px, "no_warm_core", legsOverTorso(region)});
+    }
+  }
+  *kept = std::move(warm);
+}
+
+// The components of `labels` (stats and centroids as connectedComponentsWithStats gives them),
+// judged one by one and split at heads where a region is wide enough to hold people side by
+// side: the person regions, in label order; the others go to result->rejected.
+std::vector<WarmRegion> judgeComponents(const ThermalSegmenterConfig& c, const cv::Size& size, const cv::Mat& labels,
+                                        const cv::Mat& opened, const cv::Mat& stats, const cv::Mat& centroids,
+                                        ThermalSegmentation* result) {
+  const int n = stats.rows;
+  const RegionLimits limits = regionLimits(c, size);
+  result->min_area_px = limits.min_area_px;
+  result->min_height_px = limits.min_height_px;
+  // A region too small, too large or too short for a person is that whether or not the border
+  // cuts it (a hand split off a cut person, warm ground along the bottom edge); one of a person's
+  // size that the border cuts is dropped for that, whatever else its shape says.
+  const auto failureOf = [&](const WarmRegion& region) {
+    const std::string shape = shapeFailure(region, c, limits);
+    if (shape == "too_small" || shape == "too_large" || shape == "too_short") return shape;
+    return cutByBorder(region.bbox, size, c.border_margin_px) ? std::string("cut_by_border") : shape;
+  };
+  const auto reject = [&](const WarmRegion& region, const std::string& reason) {
+    result->rejected.push_back({region.bbox, region.area_px, reason, legsOverTorso(region)});
+    if (reason == "cut_by_border") ++result->border_cut;
+  };
+  std::vector<WarmRegion> kept;
+  for (int k = 1; k < n; ++k) {
+    WarmRegion region;
+    region.label = k;
+    region.bbox = cv::Rect(stats.at<int>(k, cv::CC_STAT_LEFT), stats.at<int>(k, cv::CC_STAT_TOP),
+                           stats.at<int>(k, cv::CC_STAT_WIDTH), stats.at<int>(k, cv::CC_STAT_HEIGHT));
+    region.area_px = stats.at<int>(k, cv::CC_STAT_AREA);
+    region.centroid = cv::Point2d(centroids.at<double>(k, 0), centroids.at<double>(k, 1));
+    if (region.area_px < c.min_area_px) continue;  // specks: nothing to split or report
+    region.zones = measureZoneWidths(labels, region);
+    const std::string failure = failureOf(region);
+    // A region wider than one person for its height may hold people side by side.
+    const double aspect = static_cast<double>(region.bbox.height) / region.bbox.width;
+    if (aspect < c.split_max_aspect && failure != "too_large" && failure != "too_short") {
+      std::vector<WarmRegion> parts = splitAtHeads(labels, opened, region, c.head_dip_fraction);
+      if (parts.size() > 1) {
+        for (WarmRegion& part : parts) {
+          part.split_part = true;
+          part.zones = measureZoneWidths(labels, part);
+          const std::string part_failure = failureOf(part);
+          if (part_failure.empty()) {
+            kept.push_back(part);
+          } else if (part_failure != "too_small") {
+            reject(part, part_failure);
+          }
+        }
+        continue;
+      }
+    }
+    if (failure.empty()) {
+      kept.push_back(region);
+    } else {
+      reject(region, failure);
+    }
+  }
+  return kept;
+}
 }  // namespace
 
 ThermalPersonSegmenter::ThermalPersonSegmenter(const ThermalSegmenterConfig& config) : config_(config) {
@@ -143,39 +228,9 @@ ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const 
   // 640x512 mask, BBDT ~0.6 ms (bench/detection_benchmark.cpp measures the whole call).
   const int n = cv::connectedComponentsWithStats(binary, labels, stats, centroids, 8, CV_32S, cv::CCL_BBDT);
   result.components = n - 1;
-  const double max_area = c.max_area_fraction * static_cast<double>(image.total());
-  std::vector<WarmRegion> kept;
-  for (int k = 1; k < n; ++k) {
-    WarmRegion region;
-    region.label = k;
-    region.bbox = cv::Rect(stats.at<int>(k, cv::CC_STAT_LEFT), stats.at<int>(k, cv::CC_STAT_TOP),
-                           stats.at<int>(k, cv::CC_STAT_WIDTH), stats.at<int>(k, cv::CC_STAT_HEIGHT));
-    region.area_px = stats.at<int>(k, cv::CC_STAT_AREA);
-    region.centroid = cv::Point2d(centroids.at<double>(k, 0), centroids.at<double>(k, 1));
-    if (region.area_px < c.min_area_px) continue;  // specks: nothing to split or report
-    region.zones = measureZoneWidths(labels, region);
-    const std::string failure = shapeFailure(region, c, max_area);
-    // A region wider than one person for its height may hold people side by side.
-    const double aspect = static_cast<double>(region.bbox.height) / region.bbox.width;
-    if (aspect < c.split_max_aspect && failure != "too_large" && failure != "too_short") {
-      const std::vector<WarmRegion> parts = splitAtHeads(labels, opened, region, c.head_dip_fraction);
-      if (parts.size() > 1) {
-        for (const WarmRegion& part : parts) {
-          const std::string part_failure = shapeFailure(part, c, max_area);
-          if (part_failure.empty()) {
-            kept.push_back(part);
-          } else if (part_failure != "too_small") {
-            result.rejected.push_back({part.bbox, part.area_px, part_failure, part.zones.legsOverTorso()});
-          }
-        }
-        continue;
-      }
-    }
-    if (failure.empty()) {
-      kept.push_back(region);
-    } else {
-      result.rejected.push_back({region.bbox, region.area_px, failure, region.zones.legsOverTorso()});
-    }
+  std::vector<WarmRegion> kept = judgeComponents(c, image.size(), labels, opened, stats, centroids, &result);
+  if (!result.radiometric && c.relative_min_core > 0.0 && !kept.empty()) {
+    dropRegionsWithoutWarmCore(image, labels, levels, c.relative_min_core, &kept, &result);
   }
   // Ids left to right (then top to bottom), at most 255 in an 8-bit mask.
   std::sort(kept.begin(), kept.end(), [](const WarmRegion& a, const WarmRegion& b) {
@@ -190,7 +245,7 @@ ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const 
     person.area_px = region.area_px;
     person.centroid = region.centroid;
     person.fill = static_cast<double>(person.area_px) / person.bbox.area();
-    person.leg_to_torso_width = region.zones.legsOverTorso();
+    person.leg_to_torso_width = legsOverTorso(region);
     const auto id = static_cast<std::uint8_t>(person.id);
     // The box of a part covers only its columns, so painting the label inside it paints the part.
     const double mean = is16 ? paintComponent<std::uint16_t>(image, labels, region.label, region.bbox, id, &result.mask)

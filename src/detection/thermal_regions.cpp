@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace thermal_lidar_calibration {
 namespace detection {
@@ -55,19 +56,69 @@ ZoneWidths measureZoneWidths(const cv::Mat& labels, const WarmRegion& r) {
   return zones;
 }
 
-std::string shapeFailure(const WarmRegion& r, const ThermalSegmenterConfig& c, double max_area_px) {
+RegionLimits regionLimits(const ThermalSegmenterConfig& c, const cv::Size& size) {
+  const double focal_px = 0.5 * size.width / std::tan(0.5 * c.camera_hfov_deg * M_PI / 180.0);
+  const double px_per_m = focal_px / c.max_range_m;  // at the farthest range
+  RegionLimits limits;
+  limits.min_area_px = std::max<double>(c.min_area_px, px_per_m * px_per_m * c.min_person_area_m2);
+  limits.max_area_px = c.max_area_fraction * static_cast<double>(size.area());
+  limits.min_height_px = std::max<double>(c.min_height_px, px_per_m * c.min_person_height_m);
+  return limits;
+}
+
+std::string shapeFailure(const WarmRegion& r, const ThermalSegmenterConfig& c, const RegionLimits& limits) {
   const int w = r.bbox.width, h = r.bbox.height;
-  if (r.area_px < c.min_area_px) return "too_small";
-  if (r.area_px > max_area_px) return "too_large";
-  if (h < c.min_height_px) return "too_short";
+  if (r.area_px < limits.min_area_px) return "too_small";
+  if (r.area_px > limits.max_area_px) return "too_large";
+  if (h < limits.min_height_px) return "too_short";
   const double aspect = static_cast<double>(h) / w;
   const double fill = static_cast<double>(r.area_px) / (static_cast<double>(w) * h);
   if (aspect < c.min_aspect) return "too_squat";
   if (aspect > c.max_aspect) return "too_thin";
   if (fill < c.min_fill) return "too_sparse";
   if (fill > c.max_fill) return "too_full";
-  if (aspect >= c.straight_min_aspect && r.zones.straight(c.straight_ratio)) return "straight";
+  if (!r.split_part && aspect >= c.straight_min_aspect && r.zones.straight(c.straight_ratio)) return "straight";
+  // Slender regions have the straight-sides test (with a neck of its own); a far person side on
+  // is a dozen pixels wide, where the neck is a pixel or two narrower than the torso.
+  if (c.max_neck_ratio > 0.0 && aspect < c.straight_min_aspect && r.zones.neck_px > 0.0 && r.zones.torso_px > 0.0 &&
+      r.zones.neck_px > c.max_neck_ratio * r.zones.torso_px) {
+    return "no_neck";
+  }
   return "";
+}
+
+bool cutByBorder(const cv::Rect& box, const cv::Size& size, int margin_px) {
+  if (margin_px <= 0) return false;
+  return box.x < margin_px || box.y < margin_px || box.x + box.width > size.width - margin_px ||
+         box.y + box.height > size.height - margin_px;
+}
+
+namespace {
+
+template <typename T>
+std::vector<int> regionValues(const cv::Mat& image, const cv::Mat& labels, const WarmRegion& region) {
+  std::vector<int> values;
+  values.reserve(static_cast<std::size_t>(region.area_px));
+  const cv::Rect& b = region.bbox;
+  for (int y = b.y; y < b.y + b.height; ++y) {
+    const int* lab = labels.ptr<int>(y);
+    const T* pix = image.ptr<T>(y);
+    for (int x = b.x; x < b.x + b.width; ++x) {
+      if (lab[x] == region.label) values.push_back(pix[x]);
+    }
+  }
+  return values;
+}
+
+}  // namespace
+
+double regionQuantile(const cv::Mat& image, const cv::Mat& labels, const WarmRegion& region, double fraction) {
+  std::vector<int> values = image.type() == CV_16UC1 ? regionValues<std::uint16_t>(image, labels, region)
+                                                     : regionValues<std::uint8_t>(image, labels, region);
+  if (values.empty()) return 0.0;
+  const auto k = static_cast<std::ptrdiff_t>(std::floor(fraction * static_cast<double>(values.size() - 1)));
+  std::nth_element(values.begin(), values.begin() + k, values.end());
+  return values[static_cast<std::size_t>(k)];
 }
 
 WarmRegion measureColumns(const cv::Mat& labels, int label, const cv::Rect& bbox, int x0, int x1) {

@@ -34,19 +34,42 @@ struct WarmRegion {
   cv::Rect bbox;
   int area_px = 0;
   cv::Point2d centroid;
-  // Measured for a whole component only: a part of a split one has cut columns that say nothing
-  // about its sides (a person half behind another loses an arm to the cut).
+  // A part of a split one has cut columns that say nothing about its sides (a person half
+  // behind another loses an arm to the cut): only its neck is judged, not its straight sides.
   ZoneWidths zones;
+  bool split_part = false;
 };
 
-// The first shape filter a region fails, or "" for a person ("too_small" for specks); reads
-// region.zones for a slender region's straight-sides test.
-std::string shapeFailure(const WarmRegion& region, const ThermalSegmenterConfig& config, double max_area_px);
+// The size limits of a person region in an image of `size`: the pixel floors of the
+// configuration raised to the size floor from geometry (thermal_segmenter_config.hpp), and the
+// largest area.
+struct RegionLimits {
+  double min_area_px = 0;
+  double max_area_px = 0;
+  double min_height_px = 0;
+};
+RegionLimits regionLimits(const ThermalSegmenterConfig& config, const cv::Size& size);
+
+// The first shape filter a region fails, or "" for a person ("too_small" for specks and spots
+// under the size floor); reads region.zones for a slender region's straight-sides test.
+std::string shapeFailure(const WarmRegion& region, const ThermalSegmenterConfig& config, const RegionLimits& limits);
+
+// The legs over torso width reported for a region: 0 for a split part (its cut sides say nothing).
+inline double legsOverTorso(const WarmRegion& region) {
+  return region.split_part ? 0.0 : region.zones.legsOverTorso();
+}
+
+// True when `box` has a pixel within `margin_px` of the edge of an image of `size` (0: never).
+bool cutByBorder(const cv::Rect& box, const cv::Size& size, int margin_px);
 
 // The zone widths of the pixels of `region.label` in `region.bbox`: a post's are equal; a
 // person's legs together are ~0.5-0.8 of the torso (striding across the view, wider) and the neck
 // ~0.4.
 ZoneWidths measureZoneWidths(const cv::Mat& labels, const WarmRegion& region);
+
+// The `fraction` quantile of the image values of a region's pixels (`label` within its bbox:
+// a split part's box covers only its columns), in raw units. image: CV_8UC1 or CV_16UC1.
+double regionQuantile(const cv::Mat& image, const cv::Mat& labels, const WarmRegion& region, double fraction);
 
 // Statistics of the pixels of `label` in the columns [x0, x1) of `bbox` (rows of bbox only).
 WarmRegion measureColumns(const cv::Mat& labels, int label, const cv::Rect& bbox, int x0, int x1);

@@ -7,6 +7,7 @@
 #include "thermal_lidar_calibration/detection_tool/detection_files.hpp"
 #include "thermal_lidar_calibration/detection_tool/detection_views.hpp"
 
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 
@@ -29,11 +30,19 @@ void segmentImage(const DetectPeopleOptions& o, const DetectionParameters& param
         << p.bbox.height << " area " << p.area_px << '\n';
   }
   if (result.people.empty()) out << "no person found\n";
+  if (result.border_cut > 0) out << "cut by the image border: " << result.border_cut << " (not reported)\n";
   if (o.explain) {
     err << std::fixed << std::setprecision(2) << (result.radiometric ? "radiometric" : "relative")
         << ": background " << result.background_level << ", person band [" << result.threshold_low << ", "
         << result.threshold_high << "]" << (result.radiometric ? " K" : "") << "; " << result.components
-        << " warm regions\n";
+        << " warm regions; a person is at least " << result.min_height_px << " px tall and "
+        << result.min_area_px << " px large";
+    if (result.core_threshold > 0) err << "; its warm core reaches " << result.core_threshold;
+    err << '\n';
+    for (const auto& p : result.people) {
+      err << "person " << p.id << ": fill " << p.fill << ", legs/torso " << p.leg_to_torso_width << ", mean level "
+          << p.mean_level << '\n';
+    }
     for (const auto& r : result.rejected) {
       err << "not a person (" << r.reason << "): bbox " << r.bbox.x << ' ' << r.bbox.y << ' ' << r.bbox.width << ' '
           << r.bbox.height << " area " << r.area_px << '\n';
@@ -58,12 +67,28 @@ void detectInCloud(const DetectPeopleOptions& o, const DetectionParameters& para
   if (result.people.empty()) out << "no person found\n";
   if (o.explain) {
     err << std::fixed << std::setprecision(2) << "ground: tilt " << result.tilt_deg << " deg, sensor "
-        << result.sensor_height_m << " m above it; " << result.objects << " objects above the ground\n";
+        << result.sensor_height_m << " m above it; " << result.objects << " objects above the ground; ";
+    if (result.view_top_found) {
+      err << "top of the view " << result.view_top_elevation_deg << " deg (origin " << result.view_top_offset_m
+          << " m up)\n";
+    } else {
+      err << "no top of the view in the scan\n";
+    }
+    const auto describe = [&](const detection::PersonShape& s) {
+      err << "range " << s.range_m << " m, height " << s.top_m << " m, lowest " << s.bottom_m << " m, width "
+          << s.width_m << " m, depth " << s.depth_m << " m, legs/torso " << s.leg_to_torso_width << ", points "
+          << s.points;
+      if (std::isfinite(s.view_top_gap_deg)) err << ", " << s.view_top_gap_deg << " deg below the view's top";
+      err << '\n';
+    };
+    for (const auto& p : result.people) {
+      err << "person " << p.label << ": ";
+      describe(p.shape);
+    }
     for (const auto& r : result.rejected) {
       if (r.shape.top_m < params.lidar.person.min_height_m) continue;  // only the person-high ones
-      err << "not a person (" << detection::toString(r.verdict) << "): range " << r.shape.range_m << " m, height "
-          << r.shape.top_m << " m, lowest " << r.shape.bottom_m << " m, width " << r.shape.width_m << " m, depth "
-          << r.shape.depth_m << " m, legs/torso " << r.shape.leg_to_torso_width << ", points " << r.shape.points << '\n';
+      err << "not a person (" << detection::toString(r.verdict) << "): ";
+      describe(r.shape);
     }
   }
 }

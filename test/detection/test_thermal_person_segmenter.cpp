@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
+
 namespace thermal_lidar_calibration {
 namespace {
 
@@ -179,7 +181,141 @@ TEST(ThermalPersonSegmenter, StraightSidesTestCanBeTurnedOff) {
   test_support::drawPost(image, 420, 290, 20, 140, 3.0, 302.0);
   ThermalSegmenterConfig off;
   off.straight_min_aspect = 100.0;
+  off.max_neck_ratio = 0.0;  // no region is slender now: the neck test would judge the post instead
   EXPECT_EQ(ThermalPersonSegmenter(off).segment(image).people.size(), 1u);
+}
+
+TEST(ThermalPersonSegmenter, PersonCutByTheImageBorderIsDroppedAndCounted) {
+  // What fooled it on real night street images (LLVIP): people walking out of the frame, the
+  // part in view passing the shape filters as a person of its own. Here a person near the camera
+  // whose legs are below the bottom edge (head and torso in view: height / width ~2.5).
+  cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 41);
+  drawPerson(image, 200, 150, 140, 307.0, 301.0);  // wholly in view
+  drawPerson(image, 450, 400, 220, 307.0, 301.0);  // feet 108 px below the frame
+  ThermalSegmenterConfig keep;
+  keep.border_margin_px = 0;  // the detector before: both reported
+  ASSERT_EQ(ThermalPersonSegmenter(keep).segment(image).people.size(), 2u);
+  const auto result = ThermalPersonSegmenter().segment(image);
+  ASSERT_EQ(result.people.size(), 1u);
+  EXPECT_NEAR(result.people[0].centroid.x, 200, 3);
+  EXPECT_EQ(result.border_cut, 1);
+  const auto cut = std::find_if(result.rejected.begin(), result.rejected.end(),
+                                [](const auto& r) { return r.reason == "cut_by_border"; });
+  ASSERT_NE(cut, result.rejected.end());
+  EXPECT_EQ(cut->bbox.y + cut->bbox.height, kFrame.height);
+  EXPECT_GT(cut->bbox.height, 100);
+  EXPECT_EQ(cv::countNonZero(result.mask(cv::Rect(400, 380, 100, 132))), 0) << "not in the mask either";
+  // A person a few pixels clear of the border is kept: the border is not a zone. (Two rows of
+  // background: the mask's closing grows a region into a single row left at the edge.)
+  cv::Mat clear = thermalBackground(kFrame, 288.0, 0.1, 42);
+  drawPerson(clear, 320, kFrame.height - 2 - 160, 160, 307.0, 301.0);
+  const auto kept = ThermalPersonSegmenter().segment(clear);
+  EXPECT_EQ(kept.people.size(), 1u);
+  EXPECT_EQ(kept.border_cut, 0);
+  // Specks on the border are not counted as cut people.
+  cv::Mat specks = thermalBackground(kFrame, 288.0, 0.1, 43);
+  test_support::fillKelvin(specks, cv::Rect(0, 100, 3, 3), 307.0);
+  EXPECT_EQ(ThermalPersonSegmenter().segment(specks).border_cut, 0);
+}
+
+TEST(ThermalPersonSegmenter, WarmSpotsTooSmallForAPersonAtTheFarthestRangeAreNotPeople) {
+  // What fooled it on real night street images (LLVIP): warm spots 12-17 px wide and 17-28 px
+  // tall (a lamp, a warm manhole rim, a scooter's engine), person-shaped enough for the pixel
+  // floors (thermal_min_area_px 80, thermal_min_height_px 16). Through a FLIR A65 (45 deg,
+  // f = 772 px at 640 px) the head and torso of a small adult (0.8 m) at the farthest paired
+  // range (30 m) are 21 px tall: these spots would be people 30-50 m away, never paired.
+  cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 51);
+  test_support::fillKelvin(image, cv::Rect(146, 294, 8, 14), 306.0);  // a spot 8 x 18 px with a "head"
+  test_support::fillKelvin(image, cv::Rect(148, 290, 4, 4), 306.0);
+  drawPerson(image, 400, 250, 54, 307.0, 301.0);  // a 1.75 m person at 25 m
+  drawPerson(image, 520, 190, 45, 306.0, 299.0);  // at 30 m: its 2 px legs go with the opening
+  ThermalSegmenterConfig pixel_floors_only;
+  pixel_floors_only.max_range_m = 10000.0;  // the floors the detector had before
+  ASSERT_EQ(ThermalPersonSegmenter(pixel_floors_only).segment(image).people.size(), 3u);
+  const auto result = ThermalPersonSegmenter().segment(image);
+  ASSERT_EQ(result.people.size(), 2u);
+  EXPECT_NEAR(result.people[0].centroid.x, 400, 3);
+  EXPECT_NEAR(result.people[1].centroid.x, 520, 3);
+  EXPECT_NEAR(result.min_height_px, 772.5 * 0.8 / 30.0, 0.5);
+  EXPECT_NEAR(result.min_area_px, (772.5 / 30.0) * (772.5 / 30.0) * 0.15, 1.0);
+  // The floor follows the lens: through a 90 deg lens (f = 320 px) the spot is a person's size at
+  // 25 m; and the image's width: the same 45 deg lens at 1280 px doubles it.
+  ThermalSegmenterConfig wide;
+  wide.camera_hfov_deg = 90.0;
+  EXPECT_EQ(ThermalPersonSegmenter(wide).segment(image).people.size(), 3u);
+  cv::Mat doubled;
+  cv::resize(image, doubled, cv::Size(), 2.0, 2.0, cv::INTER_NEAREST);
+  const auto big = ThermalPersonSegmenter().segment(doubled);
+  EXPECT_NEAR(big.min_height_px, 2 * 772.5 * 0.8 / 30.0, 1.0);
+  EXPECT_EQ(big.people.size(), 2u);
+}
+
+// A radiometric frame mapped to 8 bits as a camera's AGC video would: 283 K -> 0, 310 K -> 255.
+cv::Mat agc8(const cv::Mat& counts16) {
+  cv::Mat grey;
+  const double per_count = 255.0 / ((310.0 - 283.0) / test_support::kKelvinPerCount);
+  counts16.convertTo(grey, CV_8U, per_count, -283.0 / test_support::kKelvinPerCount * per_count);
+  return grey;
+}
+
+TEST(ThermalPersonSegmenter, RelativeModeReflectionOfAPersonInAWallHasNoWarmCore) {
+  // What fooled it on real night street images (LLVIP): a glossy wall reflects the people
+  // walking past as person-shaped patches ~2/3 of the way from the background to them, above
+  // the threshold (0.45 of the way to the warm tail) but without their warm skin.
+  cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 61);
+  drawPerson(image, 200, 150, 150, 307.0, 301.0);
+  drawPerson(image, 450, 140, 150, 297.0, 295.0);  // the reflection: skin 297 K, clothing 295 K
+  const cv::Mat grey = agc8(image);
+  ThermalSegmenterConfig no_core;
+  no_core.relative_min_core = 0.0;  // the detector before: both
+  ASSERT_EQ(ThermalPersonSegmenter(no_core).segment(grey).people.size(), 2u);
+  const auto result = ThermalPersonSegmenter().segment(grey);
+  ASSERT_EQ(result.people.size(), 1u);
+  EXPECT_NEAR(result.people[0].centroid.x, 200, 3);
+  ASSERT_EQ(result.rejected.size(), 1u);
+  EXPECT_EQ(result.rejected[0].reason, "no_warm_core");
+  EXPECT_GT(result.core_threshold, result.threshold_low);
+  // Something hotter than people filling the warm tail (an engine, 0.7 % of the frame, saturated)
+  // does not raise the bar above the person: the bar is the warmest person-shaped region's core.
+  cv::Mat engine = image.clone();
+  test_support::fillKelvin(engine, cv::Rect(500, 400, 60, 40), 340.0);
+  const auto with_engine = ThermalPersonSegmenter().segment(agc8(engine));
+  ASSERT_EQ(with_engine.people.size(), 1u);
+  EXPECT_NEAR(with_engine.people[0].centroid.x, 200, 3);
+  // Radiometric images are judged by the body band, not by this.
+  EXPECT_TRUE(ThermalPersonSegmenter().segment(image).radiometric);
+  EXPECT_EQ(ThermalPersonSegmenter().segment(image).core_threshold, 0.0);
+}
+
+TEST(ThermalPersonSegmenter, WarmBlobsWithoutAHeadOnANeckAreNotPeople) {
+  // What fooled it on real street images (LLVIP): the warm bonnet of a parked car, wider at the
+  // top than at the bottom (53 x 123 px), and a person's legs split off at a cold belt (63 x
+  // 100 px), each passing the size, aspect and fill filters as a person of its own.
+  cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 71);
+  drawPerson(image, 120, 150, 150, 307.0, 301.0);
+  const cv::Scalar warm(std::round(test_support::countsOf(303.0)));
+  const std::vector<cv::Point> bonnet = {{300, 150}, {352, 150}, {332, 272}, {322, 272}};
+  cv::fillConvexPoly(image, bonnet, warm);
+  cv::rectangle(image, cv::Rect(480, 200, 60, 20), warm, cv::FILLED);  // hips
+  cv::rectangle(image, cv::Rect(482, 220, 22, 80), warm, cv::FILLED);  // legs
+  cv::rectangle(image, cv::Rect(516, 220, 22, 80), warm, cv::FILLED);
+  ThermalSegmenterConfig no_neck_test;
+  no_neck_test.max_neck_ratio = 0.0;  // the detector before: three people
+  ASSERT_EQ(ThermalPersonSegmenter(no_neck_test).segment(image).people.size(), 3u);
+  const auto result = ThermalPersonSegmenter().segment(image);
+  ASSERT_EQ(result.people.size(), 1u);
+  EXPECT_NEAR(result.people[0].centroid.x, 120, 3);
+  ASSERT_EQ(result.rejected.size(), 2u);
+  EXPECT_EQ(result.rejected[0].reason, "no_neck");
+  EXPECT_EQ(result.rejected[1].reason, "no_neck");
+  // A far person side on (the synthetic drives at 20 m: 12 x 70 px) has a head nearly as deep as
+  // its chest at a pixel or two of difference: slender regions are left to the straight-sides test.
+  cv::Mat far = thermalBackground(kFrame, 288.0, 0.1, 72);
+  const cv::Scalar skin(std::round(test_support::countsOf(307.0))), cloth(std::round(test_support::countsOf(301.0)));
+  cv::ellipse(far, cv::Point(300, 205), cv::Size(5, 5), 0, 0, 360, skin, cv::FILLED);     // head, 11 px
+  cv::ellipse(far, cv::Point(300, 227), cv::Size(6, 16), 0, 0, 360, cloth, cv::FILLED);   // chest, 13 px
+  cv::rectangle(far, cv::Rect(297, 240, 7, 31), cloth, cv::FILLED);                        // legs
+  EXPECT_EQ(ThermalPersonSegmenter().segment(far).people.size(), 1u);
 }
 
 TEST(ThermalPersonSegmenter, RadiometricBandNeedsBodyTemperatureRelativeModeDoesNot) {

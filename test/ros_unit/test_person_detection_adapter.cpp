@@ -76,6 +76,7 @@ TEST(PersonDetectionAdapter, MaskHasTheImagesHeaderSizeAndOneId) {
 TEST(PersonDetectionAdapter, VerticalFlipTurnsImageAndMask) {
   tlc::DetectionParameters params;
   params.input_flip = tlc::detection::ImageFlip::kVertical;
+  params.thermal.max_neck_ratio = 0.0;  // the upright person turned over has its neck at the bottom
   PersonDetectionAdapter adapter(params);
   const auto image = thermalMessage();
   const tlc::ros_io::SegmentedImage seg = adapter.segment(image, "/thermal/image_raw");

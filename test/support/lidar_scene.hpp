@@ -90,6 +90,18 @@ inline SceneObject blobAt(const Terrain& terrain, double x, double y, double z_c
   return {solid, 0};
 }
 
+// A KITTI-like Velodyne HDL-64E (its nominal beam layout): 32 beams from -24.33 to -8.83 deg
+// (0.5 deg apart) and 32 from -8.33 to +2 deg (0.333 deg apart), 2083 azimuths (0.173 deg). Its
+// top beam looks only 2 deg up: from a 1.73 m mount nothing above 2.25 m is seen at 15 m.
+inline synthetic::LidarModel hdl64eLike() {
+  synthetic::LidarModel m;
+  m.name = "HDL-64E-like";
+  for (int b = 0; b < 32; ++b) m.elevations_rad.push_back((-24.33 + 0.5 * b) * M_PI / 180.0);
+  for (int b = 0; b < 32; ++b) m.elevations_rad.push_back((-8.33 + 10.33 * b / 31.0) * M_PI / 180.0);
+  m.azimuth_count = 2083;
+  return m;
+}
+
 struct CraftedScan {
   std::vector<Eigen::Vector3f> points;  // sensor frame
   std::vector<std::uint16_t> ring;

@@ -28,6 +28,13 @@ struct LidarPersonConfig {
   // people the camera can see: the frame gate compares the two counts.
   double min_azimuth_deg = -180.0;  // lidar_min_azimuth_deg: deg; [-180, 180], below lidar_max_azimuth_deg
   double max_azimuth_deg = 180.0;   // lidar_max_azimuth_deg: deg; [-180, 180]
+  // An object whose highest point lies within view_top_margin_deg below the top of the scan's
+  // view (detection/scan_view_top.hpp) may go on above it (a trunk, a post under an HDL-64E's
+  // +2 deg top beam): its height is unknown, it is not a person. 0.2 deg is half the finest beam
+  // spacing of common sensors (HDL-64E upper block ~0.4 deg); a person's head is below the top
+  // beam by degrees (HDL-64E at 1.73 m: 2 deg at 9 m and more nearer and farther), under an
+  // HDL-32E's or a VLP-16's top beam by 10 deg or more.
+  double view_top_margin_deg = 0.2;  // lidar_view_top_margin_deg: deg; 0 = off; [0, 10]
   double max_object_height_m = 3.0;  // lidar_max_object_height_m: points higher above the ground are ignored, m; (0, 100]
   double cluster_cell_m = 0.2;    // lidar_cluster_cell_m: 2-D grid cell joining above-ground points into objects, m; [0.02, 2]
   double max_split_extent_m = 6.0;// lidar_max_split_extent_m: objects too big for one person but at most this wide and deep are searched for people standing close together, m; [0, 100]
@@ -60,6 +67,17 @@ struct LidarPersonConfig {
   double narrow_width_m = 0.2;            // lidar_narrow_width_m: m; [0, 20]
   double narrow_min_depth_m = 0.18;       // lidar_narrow_min_depth_m: m; [0, 20]
   double narrow_leg_margin_m = 0.05;      // lidar_narrow_leg_margin_m: m; [0, 20]
+  // What the beams must show of an adult, for the sampling they give at the object's range (the
+  // spacing of its own rows of points, detection/person_shape.hpp): the highest row is at most
+  // one spacing and the ground tolerance below min_person_height_m (the beam above a head passes
+  // within one; heights are above the estimated ground, good to its tolerance); the lowest
+  // row at most row_gap_factor spacings above the ground tolerance (legs reach the ground: one
+  // row may pass between them); no gap between rows wider than row_gap_factor times its
+  // neighbouring gaps (one missing row passes). A parked car's rear slice, a bush, a bicycle or
+  // a fence fails one of them at an HDL-64E's sampling (0.1 m at 15 m); at a VLP-16's (0.5 m at
+  // 15 m) the floors above decide.
+  double min_person_height_m = 1.5;  // lidar_min_person_height_m: the smallest adult looked for, m; [0, 3]
+  double row_gap_factor = 2.5;       // lidar_row_gap_factor: in row spacings; 0 = off; [0, 100]
   int min_points = 5;             // lidar_min_points: points on a person at any range; integer [1, 1000000]
   double min_points_at_10m = 20.0;// lidar_min_points_at_10m: points on a person at 10 m, scaled with (10 m / range)^2; [0, 1e6]
   void validate() const;

@@ -8,6 +8,7 @@
 #include "thermal_lidar_calibration/detection/grid_clusterer.hpp"
 #include "thermal_lidar_calibration/detection/lidar_detector_config.hpp"
 #include "thermal_lidar_calibration/detection/person_shape.hpp"
+#include "thermal_lidar_calibration/detection/scan_view_top.hpp"
 #include "thermal_lidar_calibration/detection/terrain_ground.hpp"
 
 #include <Eigen/Core>
@@ -26,6 +27,7 @@ struct LidarPerson {
   float range_m = 0;   // horizontal distance from the sensor
   float height_m = 0;  // top above the local ground
   float width_m = 0;   // across the line of sight
+  PersonShape shape;   // everything the person test measured (detect_people --explain prints it)
 };
 
 // An object (or a part of one) that failed the person test, for tuning.
@@ -44,6 +46,9 @@ struct LidarDetection {
   double tilt_deg = 0;         // mount tilt removed by the levelling (0 if not levelled)
   double sensor_height_m = 0;  // above the levelling plane
   int objects = 0;             // above-ground objects considered
+  bool view_top_found = false;  // the top of the scan's view (scan_view_top.hpp), when found
+  double view_top_elevation_deg = 0;
+  double view_top_offset_m = 0;
   std::vector<RejectedObject> rejected;  // objects and parts judged not a person (not split further)
 };
 
@@ -61,11 +66,17 @@ class LidarPersonDetector {
   const LidarDetectorConfig& config() const { return config_; }
 
  private:
-  void explainObject(const std::vector<int>& object, int depth, std::vector<std::vector<int>>* people,
-                     std::vector<RejectedObject>* rejected) const;
+  // Judges an object (points: the input, sensor frame) and splits it when it may hold people.
+  void explainObject(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& object, int depth,
+                     std::vector<std::vector<int>>* people, std::vector<RejectedObject>* rejected) const;
+  PersonShape shapeOf(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& object) const;
+  // judgeShape, then judgeSampling on its rows for an object that passed it.
+  ShapeVerdict judgeObject(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& object,
+                           const PersonShape& shape) const;
 
   LidarDetectorConfig config_;
   TerrainGround ground_;
+  ScanViewTop view_top_;
   GridClusterer grid_;
 };
 

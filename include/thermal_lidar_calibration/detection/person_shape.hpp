@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include <limits>
 #include <vector>
 
 namespace thermal_lidar_calibration {
@@ -29,6 +30,21 @@ struct PersonShape {
   float leg_width_m = 0;    // the zones' widths across the line of sight (0: no point)
   float torso_width_m = 0;
   float head_width_m = 0;   // above 85 % of the top
+  // Elevation of the highest point below the top of the scan's view, deg (scan_view_top.hpp);
+  // +infinity when the scan showed no top. Set by the detector, not by measureShape.
+  float view_top_gap_deg = std::numeric_limits<float>::infinity();
+};
+
+// The rows of points a spinning LiDAR puts on an object: its points grouped by elevation seen
+// from the sensor (a new row where the elevation jumps by more than 0.1 deg; beams are >= 0.17
+// deg apart on common sensors). Beam spacing differs along the view on many sensors (an HDL-64E's
+// two blocks, a VLP-32C's dense middle), so every gap is compared with its neighbours, and the
+// top and the bottom with the spacing there, in metres at the object's range.
+struct RowProfile {
+  int rows = 0;                // the rest is 0 when fewer than 3 rows
+  float top_spacing_m = 0;     // between the two highest rows
+  float bottom_spacing_m = 0;  // between the two lowest rows
+  float largest_hole = 0;      // the largest gap between rows over the larger of its neighbouring gaps
 };
 
 enum class ShapeVerdict {
@@ -45,6 +61,8 @@ enum class ShapeVerdict {
   kTooSquat,     // height / width too small: a bush, a vehicle
   kStraight,     // narrow, the legs as wide as the torso and no narrower head: a post, a trunk
   kNarrowNoLegs, // narrower than a person from the front, shallow, no legs narrower than the torso: a thin post
+  kCutByViewTop, // its top is at the top of the scan's view: it may go on above (a trunk, a post)
+  kGapInHeight,  // a gap between its rows the beams would have filled on a person (a car's slice, a fence)
 };
 const char* toString(ShapeVerdict verdict);
 
@@ -52,6 +70,13 @@ const char* toString(ShapeVerdict verdict);
 PersonShape measureShape(const std::vector<Eigen::Vector3f>& levelled, const std::vector<float>& heights,
                          const std::vector<int>& indices);
 ShapeVerdict judgeShape(const PersonShape& shape, const LidarPersonConfig& config);
+// points: sensor frame; indices: the object's points; range_m: its horizontal range.
+RowProfile measureRows(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& indices, float range_m);
+// What the beams show of an object that passed judgeShape, for their spacing on it (the
+// lidar_min_person_height_m and lidar_row_gap_factor rules): kPerson, kTooLow, kFloating or
+// kGapInHeight. An object with fewer than 3 rows is not judged (kPerson).
+ShapeVerdict judgeSampling(const PersonShape& shape, const RowProfile& rows, const LidarPersonConfig& config,
+                           double ground_tolerance_m);
 // The fewest points a person at this horizontal range must have.
 double minPersonPoints(double range_m, const LidarPersonConfig& config);
 

@@ -35,7 +35,7 @@ struct RejectedRegion {
   cv::Rect bbox;
   int area_px = 0;
   std::string reason;  // "too_large", "too_short", "too_squat", "too_thin", "too_sparse", "too_full", "straight",
-                      // "too_short_for_range" (person_size_model.hpp)
+                      // "no_neck", "cut_by_border", "no_warm_core", "too_short_for_range" (person_size_model.hpp)
   double leg_to_torso_width = 0.0;  // as ThermalPerson's
 };
 
@@ -47,6 +47,10 @@ struct ThermalSegmentation {
   double threshold_low = 0;     // a person pixel is in [threshold_low, threshold_high]
   double threshold_high = 0;
   int components = 0;           // connected components before the shape filters
+  int border_cut = 0;           // regions of a person's size dropped because the image border cuts them
+  double min_area_px = 0;       // the size floor applied to this image (thermal_segmenter_config.hpp)
+  double min_height_px = 0;
+  double core_threshold = 0;    // relative mode: the level a region's warm core had to reach (0 = not applied)
   std::vector<RejectedRegion> rejected;  // regions of at least min_area_px that failed a filter
 };
 

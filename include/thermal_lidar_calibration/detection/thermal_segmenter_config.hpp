@@ -31,12 +31,40 @@ struct ThermalSegmenterConfig {
   double relative_tail_percentile = 99.7;  // thermal_relative_tail_percentile: the warm tail, %; [50, 100]
   double relative_min_contrast_noise = 6.0;  // thermal_relative_min_contrast_noise: floor of the contrast in sigmas of the pixel noise (from neighbouring-pixel differences; at least one grey level); [0, 1000]
 
+  // --- Relative mode: a person is self-heated, and their skin is the warmest thing in a night
+  // scene, so the warmest 1 % of a person's pixels reach the frame's warm tail. A region whose
+  // warm core stays well below (a reflection of people in a glossy wall, a patch of wall or
+  // ground the day warmed) is not a person. The bar is the warm tail, or the core of the warmest
+  // region that passed the shape filters if that is lower (a frame where something hotter than
+  // people, an engine or a lamp, fills the tail). Radiometric images have the body band instead.
+  double relative_min_core = 0.9;  // thermal_relative_min_core: a region's 99th percentile reaches this fraction of the way from the background level to the bar; 0 = off; [0, 1]
+
   // --- Background level: median of a sub-sampled grid of pixels.
   int background_step_px = 4;  // thermal_background_step_px: sample every n-th pixel in x and y; integer [1, 64]
 
   // --- Clean-up of the binary mask (square structuring elements of side 2r+1).
   int open_radius_px = 1;   // thermal_open_radius_px: opening removes specks and 1-px bridges; integer [0, 10]
   int close_radius_px = 1;  // thermal_close_radius_px: closing fills small holes and seams; integer [0, 10]
+
+  // --- Regions cut by the image border: a region with a pixel in the outermost border_margin_px
+  // rows or columns may go on outside the frame, so its shape says nothing, and the LiDAR points
+  // of that person would project partly outside the image: useless for calibration. Dropped and
+  // counted (ThermalSegmentation::border_cut).
+  int border_margin_px = 1;  // thermal_border_margin_px: px; 0 = keep them; integer [0, 1000]
+
+  // --- Size floor from geometry: the smallest a person looks at the farthest range the
+  // calibration pairs (the LiDAR detector's lidar_max_range_m) through this camera's lens, with
+  // the focal length f = (image width / 2) / tan(hfov / 2): a region at least
+  // f * min_person_height_m / max_range_m px tall and f^2 * min_person_area_m2 / max_range_m^2 px
+  // large (thermal_min_height_px and thermal_min_area_px stay as floors of their own). A warm spot
+  // below it is no person at any range that matters. The smallest silhouette is the head and
+  // torso of a small adult (0.8 m tall, 0.15 m^2 side on): the legs of a far person are only 2-4
+  // px wide and may go with the opening, or be as cold as the ground. (A standing adult shows
+  // ~0.5 m^2 facing the camera, ~0.3 m^2 side on.)
+  double camera_hfov_deg = 45.0;      // thermal_camera_hfov_deg: horizontal field of view of the images as given, deg (FLIR A65: 45); (0, 170] (a pinhole view)
+  double max_range_m = 30.0;          // thermal_max_range_m: farthest person to find, m (lidar_max_range_m's default); (0, 10000]
+  double min_person_height_m = 0.8;   // thermal_min_person_height_m: height of the smallest warm silhouette, m; [0, 3]
+  double min_person_area_m2 = 0.15;   // thermal_min_person_area_m2: area of the smallest warm silhouette, m^2; [0, 5]
 
   // --- Shape filters per connected component (8-connected).
   int min_area_px = 80;             // thermal_min_area_px: pixels (a person ~45 m from a FLIR A65); integer [1, 10000000]
@@ -54,6 +82,14 @@ struct ThermalSegmenterConfig {
   // applied to the parts of a region split at heads (their cut sides say nothing).
   double straight_min_aspect = 3.5;  // thermal_straight_min_aspect: height / width; (0, 100]
   double straight_ratio = 0.8;       // thermal_straight_ratio: r; (0, 1]
+  // A person's vertical profile: a head on a neck narrower than the shoulders. The narrowest row
+  // of the neck zone (8-22 % of the height from the top) is at most max_neck_ratio times the
+  // torso zone's median row (20-50 %). People measured 0.2-0.6 (LLVIP: facing, walking, on
+  // bicycles, seen from above), a warm car bonnet 1.05 and a pair of legs split off at the belt
+  // 0.93. Applied below straight_min_aspect only: a slender region has the straight-sides test,
+  // and a far person side on is a dozen pixels wide, the neck a pixel or two narrower than the
+  // torso (the synthetic drives' people at 20 m measured up to 0.8).
+  double max_neck_ratio = 0.75;      // thermal_max_neck_ratio: 0 = off; [0, 10]
 
   // --- People side by side in one region: a region whose height / width is below
   // split_max_aspect is cut where its top profile dips head_dip_fraction of its height between
