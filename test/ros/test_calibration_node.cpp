@@ -156,6 +156,19 @@ TEST(NodeBag, ReachesDonePublishesTruthAndWritesYaml) {
     EXPECT_EQ(yaml["reference"]["source"].as<std::string>(), "tf");
     EXPECT_EQ(yaml["reference"]["origin"].as<std::string>(), "tf " + lidar_frame + " -> " + camera_frame);
   }
+  // Sensor timing (issue 21): the offset the result applied, on ~status and in the file.
+  const std::string expected_mode = pnh.param<std::string>("expected_time_offset_mode", "");
+  if (!expected_mode.empty()) {
+    const double expected_offset = pnh.param("expected_time_offset_s", 0.0);
+    EXPECT_EQ(g_observed.last_status.time_offset_mode, expected_mode) << g_observed.last_status;
+    EXPECT_NEAR(g_observed.last_status.time_offset_s, expected_offset, 1e-9);
+    EXPECT_NE(g_observed.last_status.time_offset_text, "");
+    EXPECT_EQ(g_observed.last_status.pairs_waiting_for_motion, 0u) << "kept pairs still wait for their scans";
+    EXPECT_EQ(yaml["time_offset_mode"].as<std::string>(), expected_mode);
+    EXPECT_NEAR(yaml["time_offset_s"].as<double>(), expected_offset, 1e-9);
+    EXPECT_GE(yaml["pairs_with_motion"].as<int>(), static_cast<int>(g_observed.last_status.pairs_kept) * 9 / 10)
+        << "the people's motion reached too few pairs";
+  }
   ASSERT_TRUE(yaml["verdict"]);
   EXPECT_GE(yaml["verdict_reasons"].size(), 1u);
   EXPECT_TRUE(yaml["coverage"]);
