@@ -121,6 +121,44 @@ cv::Mat drawPairLosses(const std::vector<double>& pair_losses, const std::vector
   return f.img;
 }
 
+cv::Mat drawTimeOffsetProfile(const std::vector<double>& offsets_s, const std::vector<double>& losses_px,
+                              double result_s, double halfwidth_ms, int width, int height) {
+  PlotFrame f(width, height, "loss along the camera's time offset (px; the pose refined at each offset)");
+  std::vector<std::pair<double, double>> points;  // (ms, px), finite only
+  for (std::size_t i = 0; i < std::min(offsets_s.size(), losses_px.size()); ++i) {
+    if (std::isfinite(losses_px[i])) points.emplace_back(1000.0 * offsets_s[i], losses_px[i]);
+  }
+  if (points.size() < 2) {
+    text(f.img, "no profile (the offset was not searched)", {f.area.x + 20, f.area.y + 40});
+    return f.img;
+  }
+  double lo = points.front().first, hi = points.front().first, top = 0.0;
+  for (const auto& p : points) lo = std::min(lo, p.first), hi = std::max(hi, p.first), top = std::max(top, p.second);
+  if (!(hi > lo)) hi = lo + 1.0;
+  if (!(top > 0)) top = 1.0;
+  const auto px = [&](double ms) { return f.x((ms - lo) / (hi - lo)); };
+  const double result_ms = 1000.0 * result_s;
+  if (halfwidth_ms > 0) {
+    cv::rectangle(f.img, cv::Point(px(std::max(lo, result_ms - halfwidth_ms)), f.y(1)),
+                  cv::Point(px(std::min(hi, result_ms + halfwidth_ms)), f.y(0)), cv::Scalar(235, 225, 210), cv::FILLED);
+  }
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    cv::line(f.img, {px(points[i - 1].first), f.y(points[i - 1].second / top)},
+             {px(points[i].first), f.y(points[i].second / top)}, kBlue, 2, cv::LINE_AA);
+  }
+  for (const auto& p : points) cv::circle(f.img, {px(p.first), f.y(p.second / top)}, 3, kBlue, cv::FILLED);
+  if (result_ms >= lo && result_ms <= hi) {
+    cv::line(f.img, {px(result_ms), f.y(0)}, {px(result_ms), f.y(1)}, kRed, 1);
+    text(f.img, format("result %+.1f ms", result_ms), {px(result_ms) + 5, f.area.y + 15}, 0.45, kRed);
+  }
+  text(f.img, format("%.3g", top), {8, f.area.y + 12}, 0.45);
+  text(f.img, "0", {40, f.y(0)}, 0.45);
+  text(f.img, format("%+.0f ms", lo), {f.area.x, height - 25}, 0.45);
+  text(f.img, format("%+.0f ms", hi), {f.area.x + f.area.width - 60, height - 25}, 0.45);
+  text(f.img, "time offset (the image stamped t shows the world at t + offset)", {f.area.x + 120, height - 10}, 0.45);
+  return f.img;
+}
+
 cv::Mat drawUncertainty(const Uncertainty& u, int width, int height) {
   PlotFrame f(width, height, "95 % interval half-width per camera axis (bootstrap over pairs)", 20);
   const char* names[6] = {"rot x", "rot y", "rot z", "t x", "t y", "t z"};

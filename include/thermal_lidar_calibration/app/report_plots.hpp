@@ -26,6 +26,11 @@ cv::Mat drawPairLosses(const std::vector<double>& pair_losses, const std::vector
 // along them (cm), one bar each, with the value written.
 cv::Mat drawUncertainty(const Uncertainty& uncertainty, int width = 900, int height = 360);
 
+// The loss along the camera's time offset (issue 21): the coarse search's profile (ms, px, the
+// pose refined at each offset), the result's offset marked, with its 95 % interval when given.
+cv::Mat drawTimeOffsetProfile(const std::vector<double>& offsets_s, const std::vector<double>& losses_px,
+                              double result_s, double halfwidth_ms, int width = 900, int height = 360);
+
 // The coverage grid over the image: each cell shaded by its share of person pixels, the share
 // written in it, empty cells marked.
 cv::Mat drawCoverage(const Coverage& coverage, int width = 640, int height = 512);
