@@ -2,6 +2,7 @@
 
 #include "thermal_lidar_calibration/core/change_point.hpp"
 #include "thermal_lidar_calibration/core/drift_timing.hpp"
+#include "thermal_lidar_calibration/core/timing_resolution.hpp"
 #include "thermal_lidar_calibration/core/drift_update_fit.hpp"
 #include "thermal_lidar_calibration/core/local_fit.hpp"
 #include "thermal_lidar_calibration/core/loss.hpp"
@@ -76,8 +77,20 @@ bool DriftMonitor::isTimingChange(const std::vector<CalibrationPair>& window, Dr
   if (!time_offset_s_) return false;
   const std::optional<TimingChangeFit> t =
       fitTimingChange(camera_, window, reference_, record.test.fit, calibration_.time_offset.max_s,
-                      calibration_.behind_camera_penalty_c1);
-  if (!t || std::abs(t->change_s) * 1000.0 < drift_.min_timing_change_ms) return false;
+                      calibration_.behind_camera_penalty_c1, calibration_.outlier.threshold_px);
+  if (!t || std::abs(t->change_s) * 1000.0 < drift_.min_timing_change_ms ||
+      !t->interior(calibration_.time_offset.max_s)) {
+    return false;
+  }
+  // Only a window whose motion tells the offset from the pose can blame timing: on straight
+  // steady driving past standing people a latency change and a shift along the travel are the
+  // same data (the CLI's bump drive read a 3 cm shift as -114 ms). The change must stand three
+  // of the window's 1-sigma resolutions clear of zero (the window's pairs are already at the
+  // reference's offset).
+  std::vector<std::size_t> all(window.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  const TimingResolution resolution = timingResolution(camera_, window, all, reference_, 0.0);
+  if (!(std::abs(t->change_s) * 1000.0 >= 3.0 * resolution.resolution_ms)) return false;
   // A window the pose test calls changed is timing only if the offset explains most of what the
   // pose fit gains. When people move at different speeds a latency change is no pose change at
   // all (the pose test sees nothing while the loss grows): then the offset alone must make the

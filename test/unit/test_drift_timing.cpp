@@ -83,7 +83,7 @@ TEST(DriftTiming, ALatencyChangeIsFoundWithThePoseHeld) {
   for (const CalibrationPair& p : drivePairs(fieldsafeTruth(), 0.10, 30, 9)) {
     window.push_back(rebasedAtTimeOffset(p, 0.06));
   }
-  const auto fit = fitTimingChange(fieldsafeCamera(), window, fieldsafeTruth(), fieldsafeTruth(), 0.2, 5.0);
+  const auto fit = fitTimingChange(fieldsafeCamera(), window, fieldsafeTruth(), fieldsafeTruth(), 0.2, 5.0, 5.0);
   ASSERT_TRUE(fit);
   EXPECT_EQ(fit->pairs_with_motion, 30u);
   EXPECT_NEAR(fit->change_s, 0.04, 0.003);
@@ -96,7 +96,7 @@ TEST(DriftTiming, ATurnOfTheCameraIsNotExplainedByAnOffset) {
   std::vector<CalibrationPair> window;
   for (const CalibrationPair& p : drivePairs(turned, 0.06, 30, 11)) window.push_back(rebasedAtTimeOffset(p, 0.06));
   // The window's own fit of the pose is the turned rig.
-  const auto fit = fitTimingChange(fieldsafeCamera(), window, fieldsafeTruth(), turned, 0.2, 5.0);
+  const auto fit = fitTimingChange(fieldsafeCamera(), window, fieldsafeTruth(), turned, 0.2, 5.0, 5.0);
   ASSERT_TRUE(fit);
   EXPECT_LT(fit->explained(), 0.8) << "change " << fit->change_s;
 }
@@ -105,7 +105,7 @@ TEST(DriftTiming, NoMotionNoTimingFit) {
   test_support::SyntheticPairsOptions o;
   o.pairs = 5;
   const auto pairs = test_support::makeSyntheticPairs(fieldsafeCamera(), fieldsafeTruth(), o);
-  EXPECT_FALSE(fitTimingChange(fieldsafeCamera(), pairs, fieldsafeTruth(), fieldsafeTruth(), 0.2, 5.0));
+  EXPECT_FALSE(fitTimingChange(fieldsafeCamera(), pairs, fieldsafeTruth(), fieldsafeTruth(), 0.2, 5.0, 5.0));
 }
 
 TEST(DriftTiming, TheWatchReportsALatencyChangeAsTimingNotDrift) {

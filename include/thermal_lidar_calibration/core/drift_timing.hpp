@@ -12,6 +12,7 @@
 #include "thermal_lidar_calibration/core/camera_model.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
 
+#include <cmath>
 #include <optional>
 #include <vector>
 
@@ -28,14 +29,20 @@ struct TimingChangeFit {
     return loss_reference > loss_fit ? (loss_reference - loss) / (loss_reference - loss_fit) : 0.0;
   }
   std::size_t pairs_with_motion = 0;
+  std::size_t pairs_used = 0;   // those the reference or the fit explains within the threshold
+  // Whether the best change lies inside the searched range (one at its edge is no minimum).
+  bool interior(double max_change_s) const { return std::abs(change_s) < max_change_s - 0.0025; }
 };
 
 // The pairs as the watch holds them: moved to their image's instant at the reference's time
 // offset, so that a further change d moves each point by its velocity times d. Searched within
-// +-max_change_s (steps of 5 ms, then refined to 0.5 ms). nullopt when no pair has motion.
+// +-max_change_s (steps of 5 ms, then refined to 0.5 ms), on the pairs whose Eq. (1) loss at the
+// reference or at `fit` is within `threshold_px`. nullopt when no pair has motion or none is
+// explained.
 std::optional<TimingChangeFit> fitTimingChange(const CameraModel& camera, const std::vector<CalibrationPair>& window,
                                                const Extrinsic& reference, const Extrinsic& fit,
-                                               double max_change_s, double behind_camera_penalty_c1);
+                                               double max_change_s, double behind_camera_penalty_c1,
+                                               double threshold_px);
 
 // `pair` with its points at its image's instant for `time_offset_s`, rebased so that a further
 // offset d moves them by velocity times d (cloud stamp = image stamp, no per-point times); the
