@@ -91,6 +91,9 @@ void addTimingRows(ParameterTable<CoreParameters>& t) {
   timing.real("time_offset_max_resolution_ms", &TimeOffsetConfig::max_resolution_ms, aboveRange(0, 1e6), "ms",
               "estimate only when the drive's motion resolves the offset to this (1 sigma, with the pose free); "
               "else it stays at time_offset_s and the verdict says why (straight steady driving resolves nothing)");
+  timing.real("time_offset_unresolved_min_gain", &TimeOffsetConfig::unresolved_min_gain, closedRange(0, 1), "",
+              "estimate all the same when a joint refinement from the pose-only fit moves the offset by twice the "
+              "resolution and lowers the loss by this fraction (the stamps are far off; 1 = never)");
   top.text("point_time_field", &CoreParameters::point_time_field,
            TextRule::required("must be auto, none or the name of a PointCloud2 field"),
            "the clusters' per-point capture time: auto (the first of time, t, timestamp, offset_time the "

@@ -69,6 +69,7 @@ void TimeOffsetConfig::validate() const {
   requireRange("time_offset_initial_step_s", initial_step_s, 0.0, 1.0, true);
   requireRange("time_offset_min_step_s", min_step_s, 0.0, initial_step_s, true);
   requireRange("time_offset_max_resolution_ms", max_resolution_ms, 0.0, 1e6, true);
+  requireRange("time_offset_unresolved_min_gain", unresolved_min_gain, 0.0, 1.0);
 }
 
 void CalibrationConfig::validate() const {
