@@ -153,6 +153,26 @@ TEST(TimeOffset, ASteadyDriveKeepsTheStartingOffsetAndSaysWhy) {
   EXPECT_TRUE(r.time_offset_profile_s.empty());
 }
 
+TEST(TimeOffset, AnUnresolvedOffsetIsEstimatedOnlyWhenAProbeShowsTheStampsFarOff) {
+  // A gate no drive passes: the probe alone decides. 110 ms late (a sweep stamped at its end):
+  // the joint refinement moves far and the loss falls, so it is estimated and the note says why.
+  CalibrationConfig strict = quickConfig(TimeOffsetMode::kEstimate);
+  strict.time_offset.max_resolution_ms = 0.01;
+  const auto late = movingPairs(0.11);
+  const CalibrationResult r = calibrate(fieldsafeCamera(), late, strict);
+  EXPECT_EQ(r.time_offset_mode, TimeOffsetMode::kEstimate) << r.time_offset_note;
+  EXPECT_NEAR(r.time_offset_s, 0.11, 0.005);
+  EXPECT_NE(r.time_offset_note.find("estimated although"), std::string::npos) << r.time_offset_note;
+  // With the probe switched off it stays at its start.
+  strict.time_offset.unresolved_min_gain = 1.0;
+  const CalibrationResult off = calibrate(fieldsafeCamera(), late, strict);
+  EXPECT_EQ(off.time_offset_mode, TimeOffsetMode::kFixed);
+  EXPECT_EQ(off.time_offset_s, 0.0);
+  // A steady drive 60 ms late: the probe slides along the valley for nothing, never estimated.
+  const CalibrationResult steady = calibrate(fieldsafeCamera(), movingPairs(0.06, true), quickConfig(TimeOffsetMode::kEstimate));
+  EXPECT_EQ(steady.time_offset_mode, TimeOffsetMode::kFixed) << steady.time_offset_note;
+}
+
 TEST(TimeOffset, TheJointRefinementStaysWithinTheRange) {
   const auto pairs = movingPairs(0.06, false, 12);
   const LossEvaluator loss(fieldsafeCamera(), pairs, LossConfig{5.0, PixelRule::kBilinear, 0.0});
