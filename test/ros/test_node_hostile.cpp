@@ -214,16 +214,14 @@ TEST(NodeHostile, MalformedOverlayCloudAfterTheResult) {
     const ros::Time stamp = next_stamp;
     image_pub.publish(monoImage(stamp, 640, 512));
     std::vector<std::uint8_t> pixels;
-    const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(kHangGuardS);
-    while (ros::ok() && ros::WallTime::now() < give_up) {
-      {
-        std::lock_guard<std::mutex> lock(g_overlays.mutex);
-        const auto it = g_overlays.by_stamp.find(stamp);
-        if (it != g_overlays.by_stamp.end()) return it->second;
-      }
-      ros::WallDuration(0.01).sleep();
-    }
-    ADD_FAILURE() << "no ~overlay for the image stamped " << stamp;
+    const bool seen = waitFor(kHangGuardS, [&] {
+      std::lock_guard<std::mutex> lock(g_overlays.mutex);
+      const auto it = g_overlays.by_stamp.find(stamp);
+      if (it == g_overlays.by_stamp.end()) return false;
+      pixels = it->second;
+      return true;
+    });
+    if (!seen) ADD_FAILURE() << "no ~overlay for the image stamped " << stamp;
     return pixels;
   };
   // Draws until `wanted` holds for the overlay (the cloud sent before has then been decoded).
