@@ -72,6 +72,14 @@ void TimeOffsetConfig::validate() const {
   requireRange("time_offset_unresolved_min_gain", unresolved_min_gain, 0.0, 1.0);
 }
 
+void VerticalCentringConfig::validate() const {
+  requireRange("vertical_centring_margin_px", margin_px, 0, 50);
+  requireRange("vertical_centring_max_mean_cost_px", max_mean_cost_px, 0.0, 1e6);
+  requireRange("vertical_centring_tolerance", tolerance, 0.0, 10.0);
+  requireRange("vertical_centring_rays", rays, 3, 360);
+  requireRange("vertical_centring_iterations", iterations, 1, 100);
+}
+
 void CalibrationConfig::validate() const {
   if (algorithm != Algorithm::kPlain && algorithm != Algorithm::kOutlierRejection) {
     throw std::invalid_argument("parameter 'algorithm': must be 1 or 2");
@@ -80,6 +88,7 @@ void CalibrationConfig::validate() const {
   outlier.validate();
   refine.validate();
   time_offset.validate();
+  vertical_centring.validate();
   LossConfig{behind_camera_penalty_c1, PixelRule::kNearest}.validate();
   requireRange("num_threads", num_threads, 0, 1024);
 }

@@ -84,12 +84,28 @@ struct TimeOffsetConfig {
   void validate() const;
 };
 
+// Beyond the paper, after the local refinement (refine: local only; vertical_centring.hpp): the
+// estimate is moved to the centre of the poses that fit the pairs' masks grown by margin_px, in
+// the plane of the image-vertical motions (rotation about the camera's x axis, translation along
+// its y axis). Applied only where the grown masks hold the points (mean Eq. 1 cost at the best
+// pose of that plane <= max_mean_cost_px): with noisier masks the region is set by the noise.
+struct VerticalCentringConfig {
+  bool enabled = true;
+  int margin_px = 1;               // L1 growth of every mask: the pixel grid's own uncertainty
+  double max_mean_cost_px = 0.01;  // applied only when the grown masks fit at least this well
+  double tolerance = 0.02;         // region: loss <= best * (1 + tolerance) + 1e-5 px
+  int rays = 24;                   // directions sampled to trace the region's outline
+  int iterations = 3;              // outline traced again from each new centre
+  void validate() const;
+};
+
 struct CalibrationConfig {
   Algorithm algorithm = Algorithm::kOutlierRejection;
   EvolutionConfig evolution;
   OutlierConfig outlier;
   RefineConfig refine;
   TimeOffsetConfig time_offset;
+  VerticalCentringConfig vertical_centring;  // used only with refine.mode = kLocal
   double behind_camera_penalty_c1 = 5.0;  // c1 of Eq. (2)
   std::uint64_t seed = 1;
   int num_threads = 0;  // 0 = all cores; results do not depend on it

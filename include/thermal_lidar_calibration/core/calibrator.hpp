@@ -6,6 +6,7 @@
 #include "thermal_lidar_calibration/core/calibration_pair.hpp"
 #include "thermal_lidar_calibration/core/camera_model.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
+#include "thermal_lidar_calibration/core/vertical_centring.hpp"
 
 #include <cstdint>
 #include <functional>
@@ -44,6 +45,9 @@ struct CalibrationResult {
   // The pairs used: Algorithm 2's isInlier (all true for Algorithm 1); with refine = local,
   // re-selected after refinement among all pairs by Eq. (1) <= threshold_sample_px.
   std::vector<bool> inliers;
+  // With refine = local, the vertical centring after the refinement (vertical_centring.hpp):
+  // `extrinsic` is its result; applied = false (and why) when it was skipped.
+  VerticalCentringOutcome vertical_centring;
   std::size_t pairs_used = 0;
   std::size_t pairs_collected = 0;
   int outlier_fits_accepted = 0;    // Algorithm 2 fits with ratio_inliers >= ratio_solution

@@ -1,0 +1,226 @@
+// The vertical centring after the refinement (issue 24). People are upright rectangles facing
+// the camera; the LiDAR meets them in horizontal rows 18 px apart (a ring every 1.33 deg at this
+// focal length), each row's ends a random fraction of the azimuth step inside the outline, the
+// top row as far below the head as the bottom row is above the feet. Shifting the points up or
+// down the image costs nothing until a top or a bottom row leaves its mask: a flat stretch
+// centred on the truth. The search climbs into it from below and stops at its lower edge; the
+// default run must end in its middle.
+#include "thermal_lidar_calibration/core/calibrator.hpp"
+#include "thermal_lidar_calibration/core/pose_difference.hpp"
+#include "thermal_lidar_calibration/core/vertical_centring.hpp"
+
+#include "../support/synthetic_pairs.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+
+using namespace thermal_lidar_calibration;
+
+namespace {
+
+constexpr double kRowSpacingPx = 18.0;
+constexpr double kAzimuthStepPx = 2.3;
+
+struct RingGapScene {
+  CameraModel camera = test_support::fieldsafeCamera(false);
+  // The LiDAR frame is the camera frame turned 1.15 deg about its x axis: the evolution's first
+  // population (rotations within +-0.17 deg of none) puts every point ~15 px below the truth.
+  Extrinsic truth{Eigen::Vector3d(0.02, 0.0, 0.0), Eigen::Vector3d::Zero()};
+  std::vector<CalibrationPair> pairs;
+  double smallest_gap_px = 1e9;  // the flat stretch is +- this around the truth
+};
+
+// `erode_px` > 0 shrinks every mask by that many pixels (a segmentation that misses the edges).
+RingGapScene makeRingGapScene(std::uint64_t seed, int erode_px = 0) {
+  RingGapScene s;
+  Rng rng(seed);
+  const Eigen::Matrix3d K_inv = s.camera.K().inverse();
+  const Eigen::Matrix3d R_lidar_camera = s.truth.rotationMatrix().transpose();
+  for (int i = 0; i < 24; ++i) {
+    CalibrationPair pair;
+    pair.mask = cv::Mat::zeros(s.camera.height, s.camera.width, CV_8UC1);
+    const int people = 1 + static_cast<int>(rng.index(2));
+    for (int k = 0; k < people; ++k) {
+      const double depth = rng.uniform(7.0, 22.0);
+      const double height_px = s.camera.fy * rng.uniform(1.6, 1.9) / depth;
+      const double width_px = s.camera.fx * rng.uniform(0.45, 0.6) / depth;
+      const double left = rng.uniform(40.0, s.camera.width - 40.0 - width_px);
+      const double top = rng.uniform(20.0, s.camera.height - 20.0 - height_px);
+      // Rows placed with equal gaps above and below: as many as fit, then centred.
+      const int rows = 1 + static_cast<int>((height_px - 10.0) / kRowSpacingPx);
+      const double gap = 0.5 * (height_px - (rows - 1) * kRowSpacingPx);
+      s.smallest_gap_px = std::min(s.smallest_gap_px, gap);
+      cv::rectangle(pair.mask, cv::Point(static_cast<int>(std::ceil(left)), static_cast<int>(std::ceil(top))),
+                    cv::Point(static_cast<int>(std::floor(left + width_px)),
+                              static_cast<int>(std::floor(top + height_px))),
+                    cv::Scalar(1), cv::FILLED);
+      for (int r = 0; r < rows; ++r) {
+        const double v = top + gap + r * kRowSpacingPx;
+        const double first = left + rng.uniform(0.0, kAzimuthStepPx);
+        const double last = left + width_px - rng.uniform(0.0, kAzimuthStepPx);
+        const int steps = static_cast<int>(std::ceil((last - first) / kAzimuthStepPx));
+        for (int j = 0; j <= steps; ++j) {
+          const double u = first + (last - first) * j / steps;
+          const Eigen::Vector3d p_camera = depth * (K_inv * Eigen::Vector3d(u, v, 1.0));
+          pair.points.push_back((R_lidar_camera * (p_camera - s.truth.translation)).cast<float>());
+          pair.labels.push_back(k + 1);
+        }
+      }
+    }
+    if (erode_px > 0) {
+      cv::erode(pair.mask, pair.mask,
+                cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * erode_px + 1, 2 * erode_px + 1)));
+    }
+    pair.people = people;
+    pair.stamp_s = 0.1 * i;
+    s.pairs.push_back(std::move(pair));
+  }
+  return s;
+}
+
+// A default run (Algorithm 1 for speed, then the default refinement) whose first population
+// lies near the identity with small mutations, so it climbs into the stretch from below.
+CalibrationConfig climbingConfig() {
+  CalibrationConfig c;
+  c.algorithm = Algorithm::kPlain;
+  c.evolution.population_size = 60;
+  c.evolution.max_iterations = 60;
+  c.evolution.rotation_interval_rad = 0.003;
+  c.evolution.translation_interval_m = 0.02;
+  c.evolution.sigma_rot_rad = 0.001;
+  c.evolution.sigma_trans_m = 0.002;
+  c.num_threads = 1;
+  c.seed = 3;
+  return c;
+}
+
+// Mean image-vertical offset (px) of each person's points between `e` and the truth.
+std::vector<double> verticalOffsets(const RingGapScene& s, const Extrinsic& e) {
+  std::vector<double> out;
+  for (const CalibrationPair& pair : s.pairs) {
+    std::map<int, std::pair<double, int>> sums;
+    for (std::size_t i = 0; i < pair.points.size(); ++i) {
+      const Eigen::Vector3d p = pair.points[i].cast<double>();
+      const double dv = s.camera.project(e.rotationMatrix() * p + e.translation).y() -
+                        s.camera.project(s.truth.rotationMatrix() * p + s.truth.translation).y();
+      sums[pair.labels[i]].first += dv;
+      ++sums[pair.labels[i]].second;
+    }
+    for (const auto& [label, sum] : sums) out.push_back(sum.first / sum.second);
+  }
+  return out;
+}
+
+double largestMagnitude(const std::vector<double>& v) {
+  double m = 0.0;
+  for (double x : v) m = std::max(m, std::abs(x));
+  return m;
+}
+
+}  // namespace
+
+TEST(VerticalCentring, TheDefaultRunEndsInTheMiddleOfTheFlatStretchNotAtItsEdge) {
+  const RingGapScene scene = makeRingGapScene(11);
+  ASSERT_GT(scene.smallest_gap_px, 3.0) << "the scene needs a stretch wider than the tolerances";
+
+  CalibrationConfig without = climbingConfig();
+  without.vertical_centring.enabled = false;  // the run as it was before the centring
+  const CalibrationResult edge = calibrate(scene.camera, scene.pairs, without);
+  const CalibrationResult centred = calibrate(scene.camera, scene.pairs, climbingConfig());
+
+  // Before: every person's points sit low, at the edge the search reached first (0.8 to 5.4 px
+  // measured, farther for far people: the stretch's edge is tilted as well as shifted).
+  const std::vector<double> before = verticalOffsets(scene, edge.extrinsic);
+  EXPECT_FALSE(edge.vertical_centring.ran);
+  EXPECT_GT(*std::min_element(before.begin(), before.end()), 0.5);
+  EXPECT_GT(std::accumulate(before.begin(), before.end(), 0.0) / before.size(), 2.0);
+
+  // After: within a pixel of the middle for every person, near or far (0.35 px measured).
+  ASSERT_TRUE(centred.vertical_centring.applied) << centred.vertical_centring.skipped_because;
+  const std::vector<double> after = verticalOffsets(scene, centred.extrinsic);
+  EXPECT_LT(largestMagnitude(after), 1.0)
+      << "stretch +-" << scene.smallest_gap_px << " px; before: " << largestMagnitude(before);
+  // Both lie in the stretch: the paper's loss is the same at its edge and at its centre.
+  EXPECT_NEAR(centred.loss, edge.loss, 0.005);
+}
+
+TEST(VerticalCentring, MovesOnlyTheRotationAboutCameraXAndTheTranslationAlongY) {
+  const RingGapScene scene = makeRingGapScene(12);
+  const LossEvaluator grown = grownMaskEvaluator(scene.camera, scene.pairs, 1, 5.0);
+  std::vector<std::size_t> all(scene.pairs.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  Extrinsic start = scene.truth;
+  start.translation.y() += 0.03;  // 3 cm low: inside the stretch, off its centre
+  const VerticalCentringOutcome out = centreVertically(grown, start, all, VerticalCentringConfig{}, 1);
+  ASSERT_TRUE(out.applied) << out.skipped_because;
+  const PoseDifference moved = poseDifference(out.extrinsic, start);
+  EXPECT_GT(std::abs(moved.translation_cm.y()) + std::abs(moved.rotation_deg.x()), 0.5);
+  EXPECT_NEAR(moved.rotation_deg.y(), 0.0, 1e-9);
+  EXPECT_NEAR(moved.rotation_deg.z(), 0.0, 1e-9);
+  EXPECT_NEAR(moved.translation_cm.x(), 0.0, 1e-9);
+  // The turn is about the points' centroid, not the camera: it shifts the camera along its axis
+  // by the turn times the centroid's height in the image, here well under a millimetre.
+  EXPECT_LT(std::abs(moved.translation_cm.z()), 0.1);
+  EXPECT_LT(largestMagnitude(verticalOffsets(scene, out.extrinsic)), 1.0);
+}
+
+TEST(VerticalCentring, SameResultWithAnyThreadCount) {
+  const RingGapScene scene = makeRingGapScene(13);
+  const LossEvaluator grown = grownMaskEvaluator(scene.camera, scene.pairs, 1, 5.0);
+  std::vector<std::size_t> all(scene.pairs.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  Extrinsic start = scene.truth;
+  start.translation.y() -= 0.02;
+  const VerticalCentringOutcome one = centreVertically(grown, start, all, VerticalCentringConfig{}, 1);
+  const VerticalCentringOutcome two = centreVertically(grown, start, all, VerticalCentringConfig{}, 2);
+  ASSERT_TRUE(one.applied);
+  EXPECT_EQ(one.extrinsic.rotation_vector, two.extrinsic.rotation_vector);
+  EXPECT_EQ(one.extrinsic.translation, two.extrinsic.translation);
+  EXPECT_EQ(one.evaluations, two.evaluations);
+}
+
+// Masks that miss 2 px of every edge: the points do not fit even the grown masks, the region is
+// set by the segmentation's error, and the estimate is left as the refinement had it.
+TEST(VerticalCentring, LeavesTheEstimateWhenTheGrownMasksDoNotHoldThePoints) {
+  const RingGapScene scene = makeRingGapScene(14, /*erode_px=*/2);
+  const LossEvaluator grown = grownMaskEvaluator(scene.camera, scene.pairs, 1, 5.0);
+  std::vector<std::size_t> all(scene.pairs.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  const VerticalCentringOutcome out =
+      centreVertically(grown, scene.truth, all, VerticalCentringConfig{}, 1);
+  EXPECT_TRUE(out.ran);
+  EXPECT_FALSE(out.applied);
+  EXPECT_EQ(out.skipped_because, "points do not fit the grown masks");
+  EXPECT_GT(out.best_cost_px, VerticalCentringConfig{}.max_mean_cost_px);
+  EXPECT_EQ(out.extrinsic.translation, scene.truth.translation);
+  EXPECT_EQ(out.extrinsic.rotation_vector, scene.truth.rotation_vector);
+}
+
+// The paper mode is the paper: no centring, and the same pose as the evolution found.
+TEST(VerticalCentring, ThePaperModeDoesNotCentre) {
+  const RingGapScene scene = makeRingGapScene(15);
+  CalibrationConfig paper = climbingConfig();
+  paper.refine.mode = RefineMode::kNone;
+  const CalibrationResult r = calibrate(scene.camera, scene.pairs, paper);
+  EXPECT_FALSE(r.vertical_centring.ran);
+  EXPECT_TRUE(r.extrinsic.rotationMatrix().isApprox(r.evolution_extrinsic.rotationMatrix(), 1e-12));
+  EXPECT_EQ(r.extrinsic.translation, r.evolution_extrinsic.translation);
+}
+
+TEST(VerticalCentringConfig, RejectsValuesOutOfRangeNamingTheKey) {
+  VerticalCentringConfig c;
+  c.rays = 2;
+  try {
+    c.validate();
+    FAIL() << "rays = 2 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("vertical_centring_rays"), std::string::npos) << e.what();
+  }
+  c = VerticalCentringConfig{};
+  c.margin_px = -1;
+  EXPECT_THROW(c.validate(), std::invalid_argument);
+}
