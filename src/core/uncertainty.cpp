@@ -141,7 +141,8 @@ Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& esti
                                 const std::vector<std::size_t>& pairs,
                                 const UncertaintyConfig& config,
                                 const UncertaintyCallback& callback,
-                                const std::optional<TimeOffsetConfig>& timing) {
+                                const std::optional<TimeOffsetConfig>& timing,
+                                const ResampleCentring* centring) {
   const auto started = std::chrono::steady_clock::now();
   config.validate();
   if (pairs.size() < 3) {
@@ -188,16 +189,29 @@ Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& esti
     const std::size_t k = static_cast<std::size_t>(b);
     const std::vector<std::size_t> resample =
         resamplePairs(pairs, config.block_pairs, config.seed, b);
+    Extrinsic pose;
+    double resample_offset_s = offset_s;
     if (timed) {
       const TimedRefineOutcome out = timed->run(estimate, offset_s, resample);
-      deviations[k] = asVector(poseDifference(out.best, estimate));
+      pose = out.best;
+      resample_offset_s = out.time_offset_s;
       offset_deviations[k] = 1000.0 * (out.time_offset_s - offset_s);
       evaluations[k] = out.evaluations;
     } else {
       const RefineOutcome out = refinement.run(estimate, resample);
-      deviations[k] = asVector(poseDifference(out.best, estimate));
+      pose = out.best;
       evaluations[k] = out.evaluations;
     }
+    if (centring) {
+      // As calibrate() did: centred with the points where the refinement left the offset.
+      const VerticalCentringOutcome centred =
+          timed ? centreVertically(centring->grown->withTimeOffset(resample_offset_s), pose, resample,
+                                   centring->config, 1)
+                : centreVertically(*centring->grown, pose, resample, centring->config, 1);
+      pose = centred.extrinsic;
+      evaluations[k] += centred.evaluations;
+    }
+    deviations[k] = asVector(poseDifference(pose, estimate));
     done[k] = 1;
     const int n = ++finished;
     if (callback) {
