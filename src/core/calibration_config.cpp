@@ -11,6 +11,7 @@ using detail::requireRange;
 
 void LossConfig::validate() const {
   requireRange("behind_camera_penalty_c1", behind_camera_penalty_c1, 0.0, 1e6, true);
+  requireRange("margin_px", margin_px, 0.0, 1000.0);
 }
 
 void EvolutionConfig::validate() const {
@@ -73,7 +74,7 @@ void TimeOffsetConfig::validate() const {
 }
 
 void VerticalCentringConfig::validate() const {
-  requireRange("vertical_centring_margin_px", margin_px, 0, 50);
+  requireRange("vertical_centring_margin_px", margin_px, 0.0, 50.0);
   requireRange("vertical_centring_max_mean_cost_px", max_mean_cost_px, 0.0, 1e6);
   requireRange("vertical_centring_tolerance", tolerance, 0.0, 10.0);
   requireRange("vertical_centring_rays", rays, 3, 360);

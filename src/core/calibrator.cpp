@@ -246,18 +246,15 @@ std::vector<std::size_t> refine(const LossEvaluator& nearest, const std::vector<
 
 // Beyond the paper (issue 24): the refinement stops at the sub-pixel loss's minimum, which the
 // masks' pixel grid pulls along the image vertical; the centre of the poses that fit does not
-// lean that way. Run after the last refinement, with the points at the time offset it ended at.
-void centre(const LossEvaluator& nearest, const std::vector<CalibrationPair>& pairs, const CalibrationConfig& config,
-            const TimingPlan& timing, const std::vector<std::size_t>& used, CalibrationResult& result) {
-  const std::optional<double> offset =
-      timing.mode == TimeOffsetMode::kNone ? std::nullopt : std::optional<double>(result.time_offset_s);
-  const LossEvaluator grown =
-      grownMaskEvaluator(nearest.camera(), pairs, config.vertical_centring.margin_px, config.behind_camera_penalty_c1, offset);
+// lean that way. Run after the last refinement on the evaluator it used: the points at the time
+// offset it ended at (when one is applied), read with the sub-pixel rule and the margin.
+void centre(const LossEvaluator& nearest, const CalibrationConfig& config, const std::vector<std::size_t>& used,
+            CalibrationResult& result) {
+  const LossEvaluator bilinear = at(nearest, result.time_offset_s).withPixelRule(PixelRule::kBilinear);
   result.vertical_centring =
-      centreVertically(grown, result.extrinsic, used, config.vertical_centring, config.num_threads);
+      centreVertically(bilinear, result.extrinsic, used, config.vertical_centring, config.num_threads);
   result.extrinsic = result.vertical_centring.extrinsic;
   result.evaluations += result.vertical_centring.evaluations;
-  const LossEvaluator bilinear = at(nearest, result.time_offset_s).withPixelRule(PixelRule::kBilinear);
   result.history.push_back({"centre", 0, bilinear.loss(result.extrinsic, used), result.evaluations});
 }
 
@@ -288,7 +285,7 @@ CalibrationResult calibrate(const CameraModel& camera, const std::vector<Calibra
   if (config.refine.mode == RefineMode::kLocal && !result.stopped) {
     used = refine(nearest, pairs, config, std::move(used), report, result);
     if (!result.stopped && config.vertical_centring.enabled) {
-      centre(nearest, pairs, config, timing, used, result);
+      centre(nearest, config, used, result);
     }
   }
 

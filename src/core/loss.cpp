@@ -117,14 +117,14 @@ struct LossEvaluator::Impl {
 
   // Eq. (1): the mean psi over the pair's points.
   double pairLoss(const Params& m, const PreparedPair& pair, const kernels::MapView& map,
-                  const kernels::Points& pts, PixelRule rule) const {
+                  const kernels::Points& pts, PixelRule rule, float margin) const {
     const float sum = kernels::sumPsi(m.data(), distorted, rule == PixelRule::kBilinear, lens, pts,
-                                      map, penalty);
+                                      map, penalty, margin);
     return static_cast<double>(sum) / static_cast<double>(pair.count);
   }
-  double pairLoss(const Params& m, std::size_t i, PixelRule rule) const {
+  double pairLoss(const Params& m, std::size_t i, PixelRule rule, float margin) const {
     const PreparedPair& pair = pairs[i];
-    return pairLoss(m, pair, viewOf(pair.distance), pointsOf(pair), rule);
+    return pairLoss(m, pair, viewOf(pair.distance), pointsOf(pair), rule, margin);
   }
 };
 
@@ -200,6 +200,13 @@ bool LossEvaluator::hasMotion() const {
   return false;
 }
 
+LossEvaluator LossEvaluator::withMargin(double margin_px) const {
+  LossConfig config = config_;
+  config.margin_px = margin_px;
+  config.validate();
+  return LossEvaluator(camera_, config, impl_);
+}
+
 std::size_t LossEvaluator::pairCount() const { return impl_->pairs.size(); }
 
 bool LossEvaluator::maskTouchesImageBorder(std::size_t pair) const {
@@ -225,7 +232,8 @@ Eigen::Vector3d LossEvaluator::centroid(const std::vector<std::size_t>& pairs) c
 
 double LossEvaluator::pairLoss(std::size_t pair, const Extrinsic& extrinsic) const {
   impl_->points += impl_->pairs.at(pair).count;
-  return impl_->pairLoss(impl_->paramsOf(extrinsic), pair, config_.pixel_rule);
+  return impl_->pairLoss(impl_->paramsOf(extrinsic), pair, config_.pixel_rule,
+                         static_cast<float>(config_.margin_px));
 }
 
 double LossEvaluator::loss(const Extrinsic& extrinsic, const std::vector<std::size_t>& subset) const {
@@ -261,6 +269,7 @@ void LossEvaluator::lossBatch(const std::vector<Extrinsic>& candidates,
   const int blocks = static_cast<int>((n + block - 1) / block);
   team = std::max(1, std::min(team, blocks));
   const PixelRule rule = config_.pixel_rule;
+  const float margin = static_cast<float>(config_.margin_px);
   const double pair_count = static_cast<double>(pairs->size());
 #pragma omp parallel for schedule(dynamic, 1) num_threads(team)
   for (int b = 0; b < blocks; ++b) {
@@ -273,7 +282,7 @@ void LossEvaluator::lossBatch(const std::vector<Extrinsic>& candidates,
       const kernels::MapView map = viewOf(pair.distance);
       const kernels::Points pts = pointsOf(pair);
       for (std::size_t c = begin; c < end; ++c) {
-        sums[c - begin] += impl_->pairLoss(params[c], pair, map, pts, rule);
+        sums[c - begin] += impl_->pairLoss(params[c], pair, map, pts, rule, margin);
       }
     }
     for (std::size_t c = begin; c < end; ++c) out[c] = sums[c - begin] / pair_count;

@@ -72,9 +72,9 @@ inline bool projectScalar(const float* m, const Lens& lens, float px, float py, 
   return front;
 }
 
-template <bool kDistorted, bool kBilinear>
+template <bool kDistorted, bool kBilinear, bool kMargin>
 float sumScalar(const float* m, const Lens& lens, const Points& p, const MapView& map,
-                float penalty) {
+                float penalty, float margin) {
   const float* origin = originOf(map);
   float acc = 0.0f;
   for (int i = 0; i < p.count; ++i) {
@@ -97,6 +97,7 @@ float sumScalar(const float* m, const Lens& lens, const Points& p, const MapView
       const int index = static_cast<int>(cv) * map.width + static_cast<int>(cu);
       d = minps(std::fabs(ru - cu) + std::fabs(rv - cv), kOffLimit) + origin[index];
     }
+    if constexpr (kMargin) d = maxps(d - margin, 0.0f);
     acc += front ? d : penalty;
   }
   return acc;
@@ -218,9 +219,9 @@ TLC_AVX2 inline __m256 distanceAvx2(const Avx2Projection& q, const Avx2Map& mv) 
   }
 }
 
-template <bool kDistorted, bool kBilinear>
+template <bool kDistorted, bool kBilinear, bool kMargin>
 TLC_AVX2 float sumAvx2(const float* mp, const Lens& lens, const Points& p, const MapView& map,
-                       float penalty) {
+                       float penalty, float margin) {
   __m256 m[12];
   for (int k = 0; k < 12; ++k) m[k] = _mm256_set1_ps(mp[k]);
   const Avx2Map mv{_mm256_set1_ps(map.x0),
@@ -234,13 +235,16 @@ TLC_AVX2 float sumAvx2(const float* mp, const Lens& lens, const Points& p, const
                    _mm256_set1_epi32(map.width),
                    originOf(map)};
   const __m256 pen = _mm256_set1_ps(penalty);
+  const __m256 margin8 = _mm256_set1_ps(margin);
   __m256 acc = _mm256_setzero_ps();
   const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   for (int i = 0; i < p.count; i += 8) {
     const Avx2Projection q = projectAvx2<kDistorted>(m, lens, _mm256_loadu_ps(p.x + i),
                                                      _mm256_loadu_ps(p.y + i),
                                                      _mm256_loadu_ps(p.z + i));
-    __m256 psi = _mm256_blendv_ps(pen, distanceAvx2<kBilinear>(q, mv), q.front);
+    __m256 d = distanceAvx2<kBilinear>(q, mv);
+    if constexpr (kMargin) d = _mm256_max_ps(_mm256_sub_ps(d, margin8), _mm256_setzero_ps());
+    __m256 psi = _mm256_blendv_ps(pen, d, q.front);
     if (i + 8 > p.count) {
       // The last block reads the zero padding: those lanes contribute exactly zero.
       const __m256 real =
@@ -283,13 +287,48 @@ bool cpuHasAvx2() {
 }
 #endif
 
-template <bool kDistorted, bool kBilinear>
-float sum(const float* m, const Lens& lens, const Points& p, const MapView& map, float penalty) {
+template <bool kDistorted, bool kBilinear, bool kMargin>
+float sum(const float* m, const Lens& lens, const Points& p, const MapView& map, float penalty,
+          float margin) {
 #if TLC_HAVE_AVX2_PATH
-  if (cpuHasAvx2()) return sumAvx2<kDistorted, kBilinear>(m, lens, p, map, penalty);
+  if (cpuHasAvx2()) return sumAvx2<kDistorted, kBilinear, kMargin>(m, lens, p, map, penalty, margin);
 #endif
-  return sumScalar<kDistorted, kBilinear>(m, lens, p, map, penalty);
+  return sumScalar<kDistorted, kBilinear, kMargin>(m, lens, p, map, penalty, margin);
 }
+
+// The eight kernels: lens or not, pixel rule, margin or not (the paper's are margin-free).
+template <template <bool, bool, bool> class Kernel, typename... Args>
+float dispatch(bool distorted, bool bilinear, bool margin, Args&&... args) {
+  const int which = (distorted ? 4 : 0) + (bilinear ? 2 : 0) + (margin ? 1 : 0);
+  switch (which) {
+    case 0: return Kernel<false, false, false>::run(args...);
+    case 1: return Kernel<false, false, true>::run(args...);
+    case 2: return Kernel<false, true, false>::run(args...);
+    case 3: return Kernel<false, true, true>::run(args...);
+    case 4: return Kernel<true, false, false>::run(args...);
+    case 5: return Kernel<true, false, true>::run(args...);
+    case 6: return Kernel<true, true, false>::run(args...);
+    default: return Kernel<true, true, true>::run(args...);
+  }
+}
+
+template <bool kDistorted, bool kBilinear, bool kMargin>
+struct BestSum {
+  static float run(const float* m, const Lens& lens, const Points& p, const MapView& map,
+                   float penalty, float margin) {
+    return sum<kDistorted, kBilinear, kMargin>(m, kDistorted ? lens : kNoLens, p, map, penalty,
+                                               margin);
+  }
+};
+
+template <bool kDistorted, bool kBilinear, bool kMargin>
+struct ScalarSum {
+  static float run(const float* m, const Lens& lens, const Points& p, const MapView& map,
+                   float penalty, float margin) {
+    return sumScalar<kDistorted, kBilinear, kMargin>(m, kDistorted ? lens : kNoLens, p, map,
+                                                     penalty, margin);
+  }
+};
 
 }  // namespace
 
@@ -302,13 +341,8 @@ bool vectorPathActive() {
 }
 
 float sumPsi(const float* m, bool distorted, bool bilinear, const Lens& lens, const Points& p,
-             const MapView& map, float penalty) {
-  if (distorted) {
-    return bilinear ? sum<true, true>(m, lens, p, map, penalty)
-                    : sum<true, false>(m, lens, p, map, penalty);
-  }
-  return bilinear ? sum<false, true>(m, kNoLens, p, map, penalty)
-                  : sum<false, false>(m, kNoLens, p, map, penalty);
+             const MapView& map, float penalty, float margin) {
+  return dispatch<BestSum>(distorted, bilinear, margin > 0.0f, m, lens, p, map, penalty, margin);
 }
 
 int countInside(const float* m, bool distorted, const Lens& lens, const Points& p, int width,
@@ -323,13 +357,9 @@ int countInside(const float* m, bool distorted, const Lens& lens, const Points& 
 }
 
 float sumPsiScalar(const float* m, bool distorted, bool bilinear, const Lens& lens,
-                   const Points& p, const MapView& map, float penalty) {
-  if (distorted) {
-    return bilinear ? sumScalar<true, true>(m, lens, p, map, penalty)
-                    : sumScalar<true, false>(m, lens, p, map, penalty);
-  }
-  return bilinear ? sumScalar<false, true>(m, kNoLens, p, map, penalty)
-                  : sumScalar<false, false>(m, kNoLens, p, map, penalty);
+                   const Points& p, const MapView& map, float penalty, float margin) {
+  return dispatch<ScalarSum>(distorted, bilinear, margin > 0.0f, m, lens, p, map, penalty,
+                             margin);
 }
 
 int countInsideScalar(const float* m, bool distorted, const Lens& lens, const Points& p,

@@ -33,9 +33,10 @@ struct Points {
 };
 
 // Sum of psi over the points, with the nearest or the bilinear pixel rule; `lens` is read only
-// when `distorted`.
+// when `distorted`. margin > 0 (beyond the paper): a point in front of the camera scores
+// max(0, psi - margin) instead; margin = 0 runs the paper's code unchanged.
 float sumPsi(const float* m, bool distorted, bool bilinear, const Lens& lens, const Points& p,
-             const MapView& map, float penalty);
+             const MapView& map, float penalty, float margin = 0.0f);
 
 // Points in front of the camera whose nearest pixel lies inside a width x height image.
 int countInside(const float* m, bool distorted, const Lens& lens, const Points& p, int width,
@@ -44,7 +45,7 @@ int countInside(const float* m, bool distorted, const Lens& lens, const Points& 
 // The portable versions the functions above fall back to on CPUs without AVX2+FMA, exposed so
 // tests can check them against the vector code on any machine.
 float sumPsiScalar(const float* m, bool distorted, bool bilinear, const Lens& lens,
-                   const Points& p, const MapView& map, float penalty);
+                   const Points& p, const MapView& map, float penalty, float margin = 0.0f);
 int countInsideScalar(const float* m, bool distorted, const Lens& lens, const Points& p,
                       int width, int height);
 

@@ -42,20 +42,12 @@ QualityAssessment assessQuality(const CameraModel& camera,
                                       timed ? std::optional<double>(result.time_offset_s) : std::nullopt});
   if (config.uncertainty_enabled && used.size() >= 3) {
     const bool estimated = result.time_offset_mode == TimeOffsetMode::kEstimate;
-    const std::optional<TimeOffsetConfig> timing =
-        estimated ? std::optional<TimeOffsetConfig>(config.time_offset) : std::nullopt;
-    if (result.vertical_centring.ran) {
-      // The estimate was centred (or was tried): each resample goes through the same stage.
-      const VerticalCentringConfig& centring = result.vertical_centring.config;
-      const LossEvaluator grown =
-          grownMaskEvaluator(camera, pairs, centring.margin_px, behind_camera_penalty_c1,
-                             timed ? std::optional<double>(result.time_offset_s) : std::nullopt);
-      const ResampleCentring resample_centring{&grown, centring};
-      q.uncertainty = estimateUncertainty(loss, result.extrinsic, used, config.uncertainty, callback,
-                                          timing, &resample_centring);
-    } else {
-      q.uncertainty = estimateUncertainty(loss, result.extrinsic, used, config.uncertainty, callback, timing);
-    }
+    // When calibrate() ran the vertical centring, each resample goes through it too.
+    const VerticalCentringConfig* centring =
+        result.vertical_centring.ran ? &result.vertical_centring.config : nullptr;
+    q.uncertainty = estimateUncertainty(loss, result.extrinsic, used, config.uncertainty, callback,
+                                        estimated ? std::optional<TimeOffsetConfig>(config.time_offset) : std::nullopt,
+                                        centring);
   }
   q.timing = assessTiming(camera, pairs, result, q.uncertainty, config.time_offset, behind_camera_penalty_c1);
   q.verdict = judgeQuality(q.coverage, q.uncertainty, config.verdict, result.loss, q.timing);

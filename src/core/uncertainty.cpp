@@ -14,6 +14,7 @@
 #include "thermal_lidar_calibration/core/pose_difference.hpp"
 #include "thermal_lidar_calibration/core/random.hpp"
 #include "thermal_lidar_calibration/core/timed_refinement.hpp"
+#include "thermal_lidar_calibration/core/vertical_centring.hpp"
 #include "threads.hpp"
 
 namespace thermal_lidar_calibration {
@@ -142,7 +143,7 @@ Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& esti
                                 const UncertaintyConfig& config,
                                 const UncertaintyCallback& callback,
                                 const std::optional<TimeOffsetConfig>& timing,
-                                const ResampleCentring* centring) {
+                                const VerticalCentringConfig* centring) {
   const auto started = std::chrono::steady_clock::now();
   config.validate();
   if (pairs.size() < 3) {
@@ -205,9 +206,8 @@ Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& esti
     if (centring) {
       // As calibrate() did: centred with the points where the refinement left the offset.
       const VerticalCentringOutcome centred =
-          timed ? centreVertically(centring->grown->withTimeOffset(resample_offset_s), pose, resample,
-                                   centring->config, 1)
-                : centreVertically(*centring->grown, pose, resample, centring->config, 1);
+          timed ? centreVertically(bilinear.withTimeOffset(resample_offset_s), pose, resample, *centring, 1)
+                : centreVertically(bilinear, pose, resample, *centring, 1);
       pose = centred.extrinsic;
       evaluations[k] += centred.evaluations;
     }

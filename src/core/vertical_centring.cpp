@@ -1,10 +1,7 @@
 #include "thermal_lidar_calibration/core/vertical_centring.hpp"
 
-#include <opencv2/imgproc.hpp>
-
 #include <Eigen/Geometry>
 
-#include <array>
 #include <cmath>
 
 namespace thermal_lidar_calibration {
@@ -155,24 +152,7 @@ Eigen::Vector2d polygonCentroid(const Eigen::Vector2d& centre,
 
 }  // namespace
 
-LossEvaluator grownMaskEvaluator(const CameraModel& camera,
-                                 const std::vector<CalibrationPair>& pairs, int margin_px,
-                                 double behind_camera_penalty_c1,
-                                 std::optional<double> time_offset_s) {
-  const cv::Mat cross = cv::getStructuringElement(cv::MORPH_CROSS, cv::Size(3, 3));
-  std::vector<CalibrationPair> grown = pairs;
-  for (CalibrationPair& g : grown) {
-    if (margin_px > 0 && !g.mask.empty()) {
-      cv::Mat dilated;
-      cv::dilate(g.mask, dilated, cross, cv::Point(-1, -1), margin_px);
-      g.mask = dilated;
-    }
-  }
-  return LossEvaluator(camera, grown,
-                       LossConfig{behind_camera_penalty_c1, PixelRule::kBilinear, time_offset_s});
-}
-
-VerticalCentringOutcome centreVertically(const LossEvaluator& grown, const Extrinsic& start,
+VerticalCentringOutcome centreVertically(const LossEvaluator& loss, const Extrinsic& start,
                                          const std::vector<std::size_t>& pairs,
                                          const VerticalCentringConfig& config, int threads) {
   config.validate();
@@ -181,17 +161,19 @@ VerticalCentringOutcome centreVertically(const LossEvaluator& grown, const Extri
   out.extrinsic = start;
   if (!config.enabled) return out;
   out.ran = true;
-  const VerticalPlane plane(start, grown.centroid(pairs), grown.camera().fy);
+  const LossEvaluator with_margin =
+      loss.withPixelRule(PixelRule::kBilinear).withMargin(config.margin_px);
+  const VerticalPlane plane(start, with_margin.centroid(pairs), with_margin.camera().fy);
   if (!(plane.pivotDepth() > 0.0)) {
     out.skipped_because = "pivot behind the camera";
     return out;
   }
-  const PlaneLoss f(grown, plane, pairs, threads, out.evaluations);
+  const PlaneLoss f(with_margin, plane, pairs, threads, out.evaluations);
   double best = 0.0;
   Eigen::Vector2d centre = bestInPlane(f, Eigen::Vector2d::Zero(), best);
   out.best_cost_px = best;
   if (best > config.max_mean_cost_px) {
-    out.skipped_because = "points do not fit the grown masks";
+    out.skipped_because = "points do not fit within the margin";
     return out;
   }
   const double level = best * (1.0 + config.tolerance) + kAbsoluteTolerance;

@@ -53,6 +53,25 @@ TEST(Psi, BehindTheCameraScoresC1TimesTheLargerSide) {
   EXPECT_DOUBLE_EQ(psi({0.1f, 0.0f, 0.0f}), 5.0 * 100.0);  // z = 0 is not in front
 }
 
+// Beyond the paper (the vertical centring's loss): a margin takes that much off every point in
+// front of the camera, down to zero, and leaves the behind-camera penalty alone.
+TEST(Psi, AMarginTakesThatMuchOffEachPointInFrontDownToZero) {
+  const auto with_margin = [](const Eigen::Vector3f& point, double margin) {
+    const LossEvaluator loss(smallCamera(), {pairWith({point})},
+                             LossConfig{5.0, PixelRule::kBilinear, margin});
+    return loss.pairLoss(0, Extrinsic{});
+  };
+  EXPECT_DOUBLE_EQ(with_margin({0.0f, 0.0f, 1.0f}, 1.0), 9.0);     // (50, 40): 10 px away
+  EXPECT_NEAR(with_margin({0.095f, 0.0f, 1.0f}, 1.0), 0.0, 1e-6);  // (59.5, 40): 0.5 px away
+  EXPECT_NEAR(with_margin({0.085f, 0.0f, 1.0f}, 1.0), 0.5, 1e-5);  // (58.5, 40): 1.5 px away
+  EXPECT_DOUBLE_EQ(with_margin({0.1f, 0.0f, -1.0f}, 1.0), 5.0 * 100.0);
+  const LossEvaluator plain(smallCamera(), {pairWith({{0.0f, 0.0f, 1.0f}})},
+                            LossConfig{5.0, PixelRule::kBilinear});
+  EXPECT_DOUBLE_EQ(plain.withMargin(2.5).pairLoss(0, Extrinsic{}), 7.5);  // shares the maps
+  EXPECT_DOUBLE_EQ(plain.pairLoss(0, Extrinsic{}), 10.0);
+  EXPECT_THROW(plain.withMargin(-1.0), std::invalid_argument);
+}
+
 TEST(Psi, FarAwayProjectionsStayFinite) {
   const double v = psi({1.0f, 0.0f, 1e-30f});
   EXPECT_TRUE(std::isfinite(v));

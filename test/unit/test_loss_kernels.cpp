@@ -70,6 +70,10 @@ TEST(LossKernels, PortableFallbackAgreesWithTheDispatchedCode) {
        kernels::sumPsi(m, true, false, lens, pts, view, 3200.0f), 2.0f);
   near(kernels::sumPsiScalar(m, true, true, lens, pts, view, 3200.0f),
        kernels::sumPsi(m, true, true, lens, pts, view, 3200.0f), 0.05f);
+  near(kernels::sumPsiScalar(m, true, true, lens, pts, view, 3200.0f, 1.0f),  // with a margin
+       kernels::sumPsi(m, true, true, lens, pts, view, 3200.0f, 1.0f), 0.05f);
+  near(kernels::sumPsiScalar(pinhole, false, false, lens, pts, view, 3200.0f, 1.0f),
+       kernels::sumPsi(pinhole, false, false, lens, pts, view, 3200.0f, 1.0f), 2.0f);
   EXPECT_NEAR(kernels::countInsideScalar(m, true, lens, pts, 640, 512),
               kernels::countInside(m, true, lens, pts, 640, 512), 1);
   EXPECT_GT(kernels::countInside(m, true, lens, pts, 640, 512), 0);  // the data reaches the image

@@ -150,12 +150,12 @@ TEST(VerticalCentring, TheDefaultRunEndsInTheMiddleOfTheFlatStretchNotAtItsEdge)
 
 TEST(VerticalCentring, MovesOnlyTheRotationAboutCameraXAndTheTranslationAlongY) {
   const RingGapScene scene = makeRingGapScene(12);
-  const LossEvaluator grown = grownMaskEvaluator(scene.camera, scene.pairs, 1, 5.0);
+  const LossEvaluator loss(scene.camera, scene.pairs, LossConfig{5.0, PixelRule::kBilinear});
   std::vector<std::size_t> all(scene.pairs.size());
   std::iota(all.begin(), all.end(), std::size_t{0});
   Extrinsic start = scene.truth;
   start.translation.y() += 0.03;  // 3 cm low: inside the stretch, off its centre
-  const VerticalCentringOutcome out = centreVertically(grown, start, all, VerticalCentringConfig{}, 1);
+  const VerticalCentringOutcome out = centreVertically(loss, start, all, VerticalCentringConfig{}, 1);
   ASSERT_TRUE(out.applied) << out.skipped_because;
   const PoseDifference moved = poseDifference(out.extrinsic, start);
   EXPECT_GT(std::abs(moved.translation_cm.y()) + std::abs(moved.rotation_deg.x()), 0.5);
@@ -170,31 +170,31 @@ TEST(VerticalCentring, MovesOnlyTheRotationAboutCameraXAndTheTranslationAlongY) 
 
 TEST(VerticalCentring, SameResultWithAnyThreadCount) {
   const RingGapScene scene = makeRingGapScene(13);
-  const LossEvaluator grown = grownMaskEvaluator(scene.camera, scene.pairs, 1, 5.0);
+  const LossEvaluator loss(scene.camera, scene.pairs, LossConfig{5.0, PixelRule::kBilinear});
   std::vector<std::size_t> all(scene.pairs.size());
   std::iota(all.begin(), all.end(), std::size_t{0});
   Extrinsic start = scene.truth;
   start.translation.y() -= 0.02;
-  const VerticalCentringOutcome one = centreVertically(grown, start, all, VerticalCentringConfig{}, 1);
-  const VerticalCentringOutcome two = centreVertically(grown, start, all, VerticalCentringConfig{}, 2);
+  const VerticalCentringOutcome one = centreVertically(loss, start, all, VerticalCentringConfig{}, 1);
+  const VerticalCentringOutcome two = centreVertically(loss, start, all, VerticalCentringConfig{}, 2);
   ASSERT_TRUE(one.applied);
   EXPECT_EQ(one.extrinsic.rotation_vector, two.extrinsic.rotation_vector);
   EXPECT_EQ(one.extrinsic.translation, two.extrinsic.translation);
   EXPECT_EQ(one.evaluations, two.evaluations);
 }
 
-// Masks that miss 2 px of every edge: the points do not fit even the grown masks, the region is
-// set by the segmentation's error, and the estimate is left as the refinement had it.
+// Masks that miss 2 px of every edge: the points do not fit even within the 1 px margin, the
+// region would be set by the segmentation's error, and the estimate is left as refined.
 TEST(VerticalCentring, LeavesTheEstimateWhenTheGrownMasksDoNotHoldThePoints) {
   const RingGapScene scene = makeRingGapScene(14, /*erode_px=*/2);
-  const LossEvaluator grown = grownMaskEvaluator(scene.camera, scene.pairs, 1, 5.0);
+  const LossEvaluator loss(scene.camera, scene.pairs, LossConfig{5.0, PixelRule::kBilinear});
   std::vector<std::size_t> all(scene.pairs.size());
   std::iota(all.begin(), all.end(), std::size_t{0});
   const VerticalCentringOutcome out =
-      centreVertically(grown, scene.truth, all, VerticalCentringConfig{}, 1);
+      centreVertically(loss, scene.truth, all, VerticalCentringConfig{}, 1);
   EXPECT_TRUE(out.ran);
   EXPECT_FALSE(out.applied);
-  EXPECT_EQ(out.skipped_because, "points do not fit the grown masks");
+  EXPECT_EQ(out.skipped_because, "points do not fit within the margin");
   EXPECT_GT(out.best_cost_px, VerticalCentringConfig{}.max_mean_cost_px);
   EXPECT_EQ(out.extrinsic.translation, scene.truth.translation);
   EXPECT_EQ(out.extrinsic.rotation_vector, scene.truth.rotation_vector);

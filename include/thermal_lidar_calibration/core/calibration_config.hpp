@@ -85,14 +85,15 @@ struct TimeOffsetConfig {
 };
 
 // Beyond the paper, after the local refinement (refine: local only; vertical_centring.hpp): the
-// estimate is moved to the centre of the poses that fit the pairs' masks grown by margin_px, in
-// the plane of the image-vertical motions (rotation about the camera's x axis, translation along
-// its y axis). Applied only where the grown masks hold the points (mean Eq. 1 cost at the best
-// pose of that plane <= max_mean_cost_px): with noisier masks the region is set by the noise.
+// estimate is moved to the centre of the poses that keep every point within margin_px of its
+// mask, in the plane of the image-vertical motions (rotation about the camera's x axis,
+// translation along its y axis). Applied only where the points fit that well (mean Eq. 1 cost
+// with the margin, at the best pose of that plane, <= max_mean_cost_px): with noisier masks the
+// region is set by the noise.
 struct VerticalCentringConfig {
   bool enabled = true;
-  int margin_px = 1;               // L1 growth of every mask: the pixel grid's own uncertainty
-  double max_mean_cost_px = 0.01;  // applied only when the grown masks fit at least this well
+  double margin_px = 1.0;          // sub-pixel distance that costs nothing: the pixel grid's own
+  double max_mean_cost_px = 0.01;  // applied only when the points fit at least this well
   double tolerance = 0.02;         // region: loss <= best * (1 + tolerance) + 1e-5 px
   int rays = 24;                   // directions sampled to trace the region's outline
   int iterations = 3;              // outline traced again from each new centre

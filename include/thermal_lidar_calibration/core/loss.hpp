@@ -30,6 +30,10 @@ struct LossConfig {
   // measured motion always). A value delta moves each point with its person's motion to the
   // instant the image was captured, stamp + delta (person_timing.hpp).
   std::optional<double> time_offset_s;
+  // Beyond the paper (0 = the paper): a point in front of the camera within this many pixels of
+  // a mask costs nothing, psi' = max(0, psi - margin_px); the vertical centring's loss
+  // (vertical_centring.hpp).
+  double margin_px = 0.0;
   void validate() const;
 };
 
@@ -67,6 +71,8 @@ class LossEvaluator {
   LossEvaluator withTimeOffset(double time_offset_s) const;
   // Whether some pair has measured motion (a time offset then moves points).
   bool hasMotion() const;
+  // The same with another LossConfig::margin_px (shares the prepared data).
+  LossEvaluator withMargin(double margin_px) const;
 
   std::size_t pairCount() const;
   // True when pair i's people touch the image border: the mask shows only part of someone the

@@ -21,7 +21,6 @@
 #include "thermal_lidar_calibration/core/camera_model.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
 #include "thermal_lidar_calibration/core/loss.hpp"
-#include "thermal_lidar_calibration/core/vertical_centring.hpp"
 
 namespace thermal_lidar_calibration {
 
@@ -85,25 +84,19 @@ struct Uncertainty {
 // resamples under way finish, the rest are skipped; intervals from those done, if >= 2).
 using UncertaintyCallback = std::function<bool(int done, int total)>;
 
-// The estimate's own last stage, repeated on each resample after its refinement, so that the
-// intervals describe the estimator that made the estimate (vertical_centring.hpp).
-struct ResampleCentring {
-  const LossEvaluator* grown = nullptr;  // grownMaskEvaluator() of the same pairs
-  VerticalCentringConfig config;
-};
-
 // `loss` supplies the pairs and camera (its pixel rule is replaced by the sub-pixel one);
 // `pairs` are indices into it, in time order (duplicates allowed), at least 3.
 // With `timing` (the time offset was estimated), `loss` must be at the estimated offset and each
 // resample refines the offset too, within timing->max_s. With `centring`, each resample's refined
-// pose is centred as the estimate was, with its points at the resample's own offset.
+// pose goes through the vertical centring as the estimate did (vertical_centring.hpp), with its
+// points at the resample's own offset, so that the intervals describe the estimator that made it.
 // Throws std::invalid_argument on a bad config or too few pairs.
 Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& estimate,
                                 const std::vector<std::size_t>& pairs,
                                 const UncertaintyConfig& config,
                                 const UncertaintyCallback& callback = {},
                                 const std::optional<TimeOffsetConfig>& timing = std::nullopt,
-                                const ResampleCentring* centring = nullptr);
+                                const VerticalCentringConfig* centring = nullptr);
 // Resample `index` of a bootstrap with `seed`: pairs.size() entries of `pairs` drawn with
 // replacement, in runs of `block_pairs` consecutive entries (the last run cut short).
 std::vector<std::size_t> resamplePairs(const std::vector<std::size_t>& pairs, int block_pairs,
