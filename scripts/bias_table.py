@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""Summarises scripts/bias_validation.sh runs: per label, rig, noise and input, the signed
-difference from the truth per camera axis (mean and min..max over the seeds found), how many
-axis checks the 95 % intervals held, and the truth's own Eq. 3 loss beside the result's.
+"""Summarises scripts/bias_validation.sh runs: per rig, noise, input and build (label), the
+signed difference from the truth per camera axis (mean and min..max over the seeds found), how
+many axis checks the 95 % intervals held, and the truth's own Eq. 3 loss beside the result's.
+Several labels give the builds row by row, for a before/after table.
 Usage: bias_table.py OUT LABEL... [--drives]   (--drives also lists every drive)"""
 import glob
 import os
@@ -29,55 +30,69 @@ def load(path):
     }
 
 
-def cell(values, digits):
+def cell_text(values, digits):
     fmt = "%+." + str(digits) + "f"
     return (fmt + " (" + fmt + ".." + fmt + ")") % (statistics.mean(values), min(values), max(values))
+
+
+def load_label(out, label):
+    groups = {}
+    for path in sorted(glob.glob(os.path.join(out, label, "*.yaml"))):
+        input_, rig, noise, _ = os.path.basename(path)[:-5].split(".")
+        try:
+            groups.setdefault((rig, noise, input_), []).append(load(path))
+        except (KeyError, TypeError, yaml.YAMLError):
+            print("skipped %s (no reference comparison)" % path)
+    for runs in groups.values():
+        runs.sort(key=lambda r: r["seed"])
+    return groups
+
+
+def held(runs):
+    return sum(sum(r["held"]) for r in runs), sum(len(r["held"]) for r in runs)
 
 
 def main():
     args = [a for a in sys.argv[1:] if a != "--drives"]
     drives = "--drives" in sys.argv
     out, labels = args[0], args[1:]
-    for label in labels:
-        groups = {}
-        for path in sorted(glob.glob(os.path.join(out, label, "*.yaml"))):
-            input_, rig, noise, _ = os.path.basename(path)[:-5].split(".")
-            try:
-                groups.setdefault((rig, noise, input_), []).append(load(path))
-            except (KeyError, TypeError, yaml.YAMLError):
-                print("skipped %s (no reference comparison)" % path)
-        print("\n### %s\n" % label)
-        print("Signed difference result - truth, mean (min..max) over seeds; rotation about the "
-              "camera's x, y, z in deg, translation along them in cm.\n")
-        print("| rig | noise | input | seeds | " + " | ".join(AXES) +
-              " | intervals held | loss px | truth's loss px | pairs used/kept | optimizer s |")
-        print("|" + "---|" * 14)
-        for (rig, noise, input_), runs in sorted(groups.items()):
-            runs.sort(key=lambda r: r["seed"])
-            cols = [cell([r["diff"][k] for r in runs], 3 if k < 3 else 2) for k in range(6)]
-            held = sum(sum(r["held"]) for r in runs)
-            checks = sum(len(r["held"]) for r in runs)
-            print("| %s | %s | %s | %s | %s | %d/%d | %.4f | %.4f | %.0f/%.0f | %.0f |" % (
-                rig, noise, input_, " ".join(str(r["seed"]) for r in runs), " | ".join(cols),
-                held, checks, statistics.mean(r["loss"] for r in runs),
+    by_label = {label: load_label(out, label) for label in labels}
+    cells = sorted(set(key for groups in by_label.values() for key in groups))
+    print("Signed difference result - truth, mean (min..max) over the seeds; rotation about the "
+          "camera's x, y, z in deg, translation along them in cm; camera x right, y down, z forward.\n")
+    print("| rig | noise | input | build | seeds | " + " | ".join(AXES) +
+          " | intervals held | loss px | truth's loss px | pairs used/kept |")
+    print("|" + "---|" * 14)
+    for cell in cells:
+        for label in labels:
+            runs = by_label[label].get(cell)
+            if not runs:
+                continue
+            cols = [cell_text([r["diff"][k] for r in runs], 3 if k < 3 else 2) for k in range(6)]
+            h, n = held(runs)
+            print("| %s | %s | %s | %s | %s | %s | %d/%d | %.4f | %.4f | %.0f/%.0f |" % (
+                cell[0], cell[1], cell[2], label, " ".join(str(r["seed"]) for r in runs),
+                " | ".join(cols), h, n, statistics.mean(r["loss"] for r in runs),
                 statistics.mean(r["truth_loss"] for r in runs),
-                statistics.mean(r["used"] for r in runs), statistics.mean(r["kept"] for r in runs),
-                statistics.mean(r["seconds"] for r in runs)))
-        if drives:
-            print("\n| rig | noise | input | seed | " + " | ".join(AXES) + " | held | loss | truth's loss |")
-            print("|" + "---|" * 13)
-            for (rig, noise, input_), runs in sorted(groups.items()):
-                for r in runs:
-                    print("| %s | %s | %s | %d | %s | %s | %.4f | %.4f |" % (
-                        rig, noise, input_, r["seed"],
+                statistics.mean(r["used"] for r in runs), statistics.mean(r["kept"] for r in runs)))
+    print()
+    for label in labels:
+        for input_ in ("ideal", "detect"):
+            runs = [r for key, rs in by_label[label].items() if key[2] == input_ for r in rs]
+            if runs:
+                h, n = held(runs)
+                print("%s, %s drives: the 95 %% intervals held the truth on %d of %d axis checks (%.0f %%)." % (
+                    label, input_, h, n, 100.0 * h / n))
+    if drives:
+        print("\n| rig | noise | input | build | seed | " + " | ".join(AXES) + " | held | loss | truth's loss |")
+        print("|" + "---|" * 14)
+        for cell in cells:
+            for label in labels:
+                for r in by_label[label].get(cell, []):
+                    print("| %s | %s | %s | %s | %d | %s | %s | %.4f | %.4f |" % (
+                        cell[0], cell[1], cell[2], label, r["seed"],
                         " | ".join("%+.3f" % v if k < 3 else "%+.2f" % v for k, v in enumerate(r["diff"])),
                         "".join("y" if h else "n" for h in r["held"]), r["loss"], r["truth_loss"]))
-        ideal = [r for (rig, noise, input_), runs in groups.items() if input_ == "ideal" for r in runs]
-        if ideal:
-            held = sum(sum(r["held"]) for r in ideal)
-            checks = sum(len(r["held"]) for r in ideal)
-            print("\nIdeal-topic drives: intervals held the truth on %d of %d axis checks (%.0f %%)." % (
-                held, checks, 100.0 * held / max(checks, 1)))
 
 
 if __name__ == "__main__":
