@@ -57,8 +57,9 @@ TEST(Psi, BehindTheCameraScoresC1TimesTheLargerSide) {
 // front of the camera, down to zero, and leaves the behind-camera penalty alone.
 TEST(Psi, AMarginTakesThatMuchOffEachPointInFrontDownToZero) {
   const auto with_margin = [](const Eigen::Vector3f& point, double margin) {
-    const LossEvaluator loss(smallCamera(), {pairWith({point})},
-                             LossConfig{5.0, PixelRule::kBilinear, margin});
+    LossConfig config{5.0, PixelRule::kBilinear};
+    config.margin_px = margin;
+    const LossEvaluator loss(smallCamera(), {pairWith({point})}, config);
     return loss.pairLoss(0, Extrinsic{});
   };
   EXPECT_DOUBLE_EQ(with_margin({0.0f, 0.0f, 1.0f}, 1.0), 9.0);     // (50, 40): 10 px away
@@ -70,6 +71,17 @@ TEST(Psi, AMarginTakesThatMuchOffEachPointInFrontDownToZero) {
   EXPECT_DOUBLE_EQ(plain.withMargin(2.5).pairLoss(0, Extrinsic{}), 7.5);  // shares the maps
   EXPECT_DOUBLE_EQ(plain.pairLoss(0, Extrinsic{}), 10.0);
   EXPECT_THROW(plain.withMargin(-1.0), std::invalid_argument);
+}
+
+TEST(Psi, AMarginAndATimeOffsetCombineInEitherOrder) {
+  // The point moves 1 m/s along x: at delta = 0.05 s it projects to (55, 40), 5 px away.
+  CalibrationPair pair = pairWith({{0.0f, 0.0f, 1.0f}});
+  pair.point_velocity = {{1.0f, 0.0f, 0.0f}};
+  const LossEvaluator timed(smallCamera(), {pair}, LossConfig{5.0, PixelRule::kBilinear, 0.0});
+  EXPECT_NEAR(timed.withTimeOffset(0.05).pairLoss(0, Extrinsic{}), 5.0, 1e-4);
+  EXPECT_NEAR(timed.withTimeOffset(0.05).withMargin(1.0).pairLoss(0, Extrinsic{}), 4.0, 1e-4);
+  EXPECT_NEAR(timed.withMargin(1.0).withTimeOffset(0.05).pairLoss(0, Extrinsic{}), 4.0, 1e-4);
+  EXPECT_NEAR(timed.withMargin(1.0).pairLoss(0, Extrinsic{}), 9.0, 1e-4);  // still at delta 0
 }
 
 TEST(Psi, FarAwayProjectionsStayFinite) {
