@@ -33,7 +33,6 @@
 #include "thermal_lidar_calibration/core/loss.hpp"
 
 #include <cstdint>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,8 +53,10 @@ struct VerticalCentringOutcome {
 };
 
 // Centres `start` over `pairs` (indices into `loss`, duplicates allowed) as described above,
-// reading `loss`'s pairs with the sub-pixel rule and config.margin_px. Evaluations run `threads`
-// wide (0 = all cores); the result does not depend on it.
+// reading `loss`'s pairs with the sub-pixel rule and config.margin_px. With a camera time offset
+// in `loss` (the points at the image's instant, loss.hpp) the centring keeps it: pass the
+// evaluator the last refinement used. Evaluations run `threads` wide (0 = all cores); the result
+// does not depend on it.
 VerticalCentringOutcome centreVertically(const LossEvaluator& loss, const Extrinsic& start,
                                          const std::vector<std::size_t>& pairs,
                                          const VerticalCentringConfig& config, int threads);
