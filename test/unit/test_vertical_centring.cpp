@@ -183,6 +183,40 @@ TEST(VerticalCentring, SameResultWithAnyThreadCount) {
   EXPECT_EQ(one.evaluations, two.evaluations);
 }
 
+// With a camera time offset (issue 21) the centring reads the points where the evaluator puts
+// them, at the image's instant: people walking 0.5 m/s down the LiDAR's y axis, captured 80 ms
+// before the image, are centred as the same people standing where they were at the image.
+TEST(VerticalCentring, CentresThePointsAtTheEvaluatorsTimeOffset) {
+  const RingGapScene scene = makeRingGapScene(15);
+  constexpr double kOffsetS = 0.08;
+  const Eigen::Vector3f velocity(0.0f, 0.5f, 0.0f);
+  std::vector<CalibrationPair> walking = scene.pairs;
+  for (CalibrationPair& pair : walking) {
+    pair.cloud_stamp_s = pair.stamp_s;
+    pair.point_velocity.assign(pair.points.size(), velocity);
+    for (Eigen::Vector3f& p : pair.points) p -= velocity * static_cast<float>(kOffsetS);
+  }
+  std::vector<std::size_t> all(scene.pairs.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  Extrinsic start = scene.truth;
+  start.translation.y() += 0.03;
+  const LossEvaluator standing(scene.camera, scene.pairs, LossConfig{5.0, PixelRule::kBilinear});
+  const LossEvaluator timed(scene.camera, walking, LossConfig{5.0, PixelRule::kBilinear, kOffsetS});
+  const VerticalCentringOutcome expected = centreVertically(standing, start, all, VerticalCentringConfig{}, 1);
+  const VerticalCentringOutcome out = centreVertically(timed, start, all, VerticalCentringConfig{}, 1);
+  ASSERT_TRUE(expected.applied) << expected.skipped_because;
+  ASSERT_TRUE(out.applied) << out.skipped_because;
+  const PoseDifference d = poseDifference(out.extrinsic, expected.extrinsic);
+  EXPECT_LT(d.rotation_deg.norm(), 1e-3);
+  EXPECT_LT(d.translation_cm.norm(), 0.02);
+  // Read at the capture instant instead, the same points sit 4 cm higher: a different centre.
+  const VerticalCentringOutcome at_capture =
+      centreVertically(timed.withTimeOffset(0.0), start, all, VerticalCentringConfig{}, 1);
+  ASSERT_TRUE(at_capture.applied) << at_capture.skipped_because;
+  const PoseDifference off = poseDifference(at_capture.extrinsic, expected.extrinsic);
+  EXPECT_GT(std::abs(off.translation_cm.y()) + 10.0 * std::abs(off.rotation_deg.x()), 1.0);
+}
+
 // Masks that miss 2 px of every edge: the points do not fit even within the 1 px margin, the
 // region would be set by the segmentation's error, and the estimate is left as refined.
 TEST(VerticalCentring, LeavesTheEstimateWhenTheGrownMasksDoNotHoldThePoints) {
