@@ -79,6 +79,10 @@ void VerticalCentringConfig::validate() const {
   requireRange("vertical_centring_tolerance", tolerance, 0.0, 10.0);
   requireRange("vertical_centring_rays", rays, 3, 360);
   requireRange("vertical_centring_iterations", iterations, 1, 100);
+  requireRange("vertical_centring_resample_rays", resample_rays, 3, 360);
+  requireRange("vertical_centring_resample_bisections", resample_bisections, 1, 30);
+  requireRange("vertical_centring_pair_fit_px", pair_fit_px, 0.0, 1e6);
+  requireRange("vertical_centring_min_fitting_fraction", min_fitting_fraction, 0.0, 1.0);
 }
 
 void CalibrationConfig::validate() const {

@@ -43,8 +43,7 @@ QualityAssessment assessQuality(const CameraModel& camera,
   if (config.uncertainty_enabled && used.size() >= 3) {
     const bool estimated = result.time_offset_mode == TimeOffsetMode::kEstimate;
     // When calibrate() ran the vertical centring, each resample goes through it too.
-    const VerticalCentringConfig* centring =
-        result.vertical_centring.ran ? &result.vertical_centring.config : nullptr;
+    const VerticalCentringOutcome* centring = result.vertical_centring.ran ? &result.vertical_centring : nullptr;
     q.uncertainty = estimateUncertainty(loss, result.extrinsic, used, config.uncertainty, callback,
                                         estimated ? std::optional<TimeOffsetConfig>(config.time_offset) : std::nullopt,
                                         centring);

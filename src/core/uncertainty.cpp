@@ -143,7 +143,7 @@ Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& esti
                                 const UncertaintyConfig& config,
                                 const UncertaintyCallback& callback,
                                 const std::optional<TimeOffsetConfig>& timing,
-                                const VerticalCentringConfig* centring) {
+                                const VerticalCentringOutcome* centring) {
   const auto started = std::chrono::steady_clock::now();
   config.validate();
   if (pairs.size() < 3) {
@@ -206,8 +206,8 @@ Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& esti
     if (centring) {
       // As calibrate() did: centred with the points where the refinement left the offset.
       const VerticalCentringOutcome centred =
-          timed ? centreVertically(bilinear.withTimeOffset(resample_offset_s), pose, resample, *centring, 1)
-                : centreVertically(bilinear, pose, resample, *centring, 1);
+          timed ? centreResample(bilinear.withTimeOffset(resample_offset_s), pose, resample, *centring, 1)
+                : centreResample(bilinear, pose, resample, *centring, 1);
       pose = centred.extrinsic;
       evaluations[k] += centred.evaluations;
     }

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 
 namespace thermal_lidar_calibration {
@@ -11,9 +12,12 @@ namespace {
 // direction still inside there counts as unbounded.
 constexpr double kFirstStep = 0.25;
 constexpr int kMaxDoublings = 12;
-constexpr int kBisections = 10;        // boundary to 1/1024 of its bracket
 constexpr double kMinSearchStep = 1e-3;  // pixels: the plane's best pose to this step
+// A resample's refined pose lies within a pixel or so of the estimate's: its search starts smaller.
+constexpr double kResampleFirstStep = 0.25;
 constexpr double kAbsoluteTolerance = 1e-5;
+constexpr int kMaxFitRounds = 6;
+constexpr int kBisections = 10;  // boundary to 1/1024 of its bracket
 
 // Pose at plane coordinates q (pixels at the pivot's depth): rotation about the camera's x
 // axis through the pivot by q[0] / fy, then the translation q[1] * depth / fy along its y axis.
@@ -64,10 +68,11 @@ class PlaneLoss {
 };
 
 // Compass search in the plane from q: the four +-step probes in one batch, halving the step
-// when none improves.
-Eigen::Vector2d bestInPlane(const PlaneLoss& f, Eigen::Vector2d q, double& fq) {
+// when none improves; it stops early once the loss is at most `good_enough`.
+Eigen::Vector2d bestInPlane(const PlaneLoss& f, Eigen::Vector2d q, double& fq, double first_step = 1.0,
+                            double good_enough = -1.0) {
   fq = f({q})[0];
-  for (double step = 1.0; step >= kMinSearchStep;) {
+  for (double step = first_step; step >= kMinSearchStep && !(fq <= good_enough);) {
     const std::vector<Eigen::Vector2d> probes{q + Eigen::Vector2d(step, 0), q - Eigen::Vector2d(step, 0),
                                               q + Eigen::Vector2d(0, step), q - Eigen::Vector2d(0, step)};
     const std::vector<double> values = f(probes);
@@ -89,11 +94,15 @@ Eigen::Vector2d bestInPlane(const PlaneLoss& f, Eigen::Vector2d q, double& fq) {
 
 // Distance from `centre` to the region's edge along each direction (all directions bracketed,
 // then bisected, together); false if some direction is still inside at the largest distance.
+// `first` (optional, one per direction) is where each bracket's first probe goes.
 bool traceOutline(const PlaneLoss& f, const Eigen::Vector2d& centre,
-                  const std::vector<Eigen::Vector2d>& directions, double level,
-                  std::vector<double>& reach) {
+                  const std::vector<Eigen::Vector2d>& directions, double level, int bisections,
+                  std::vector<double>& reach, const std::vector<double>* first = nullptr) {
   const std::size_t n = directions.size();
   std::vector<double> inside(n, 0.0), outside(n, kFirstStep);
+  if (first) {
+    for (std::size_t k = 0; k < n; ++k) outside[k] = std::max((*first)[k], kFirstStep);
+  }
   std::vector<bool> bracketed(n, false);
   for (int round = 0; round <= kMaxDoublings; ++round) {
     std::vector<Eigen::Vector2d> probes;
@@ -118,7 +127,7 @@ bool traceOutline(const PlaneLoss& f, const Eigen::Vector2d& centre,
   for (std::size_t k = 0; k < n; ++k) {
     if (!bracketed[k]) return false;
   }
-  for (int b = 0; b < kBisections; ++b) {
+  for (int b = 0; b < bisections; ++b) {
     std::vector<Eigen::Vector2d> probes(n);
     for (std::size_t k = 0; k < n; ++k) {
       probes[k] = centre + 0.5 * (inside[k] + outside[k]) * directions[k];
@@ -150,6 +159,38 @@ Eigen::Vector2d polygonCentroid(const Eigen::Vector2d& centre,
   return centre + sum / (3.0 * twice_area);
 }
 
+std::vector<Eigen::Vector2d> rayDirections(int rays) {
+  std::vector<Eigen::Vector2d> directions;
+  for (int k = 0; k < rays; ++k) {
+    const double angle = 2.0 * M_PI * k / rays;
+    directions.emplace_back(std::cos(angle), std::sin(angle));
+  }
+  return directions;
+}
+
+// The region's centroid, traced from `centre` `iterations` times; false if it is unbounded.
+bool regionCentre(const PlaneLoss& f, Eigen::Vector2d& centre, double level, int rays, int iterations,
+                  int bisections, const std::vector<double>* first = nullptr) {
+  const std::vector<Eigen::Vector2d> directions = rayDirections(rays);
+  std::vector<double> reach;
+  for (int i = 0; i < iterations; ++i) {
+    if (!traceOutline(f, centre, directions, level, bisections, reach, i == 0 ? first : nullptr)) return false;
+    // A region that is not convex may have its centroid outside: then keep the last centre.
+    const Eigen::Vector2d next = polygonCentroid(centre, directions, reach);
+    if (f({next})[0] > level) break;
+    centre = next;
+  }
+  return true;
+}
+
+std::vector<std::size_t> keepOnly(const std::vector<std::size_t>& pairs, const std::vector<std::size_t>& allowed) {
+  std::vector<std::size_t> out;
+  for (const std::size_t i : pairs) {
+    if (std::binary_search(allowed.begin(), allowed.end(), i)) out.push_back(i);
+  }
+  return out;
+}
+
 }  // namespace
 
 VerticalCentringOutcome centreVertically(const LossEvaluator& loss, const Extrinsic& start,
@@ -168,34 +209,104 @@ VerticalCentringOutcome centreVertically(const LossEvaluator& loss, const Extrin
     out.skipped_because = "pivot behind the camera";
     return out;
   }
-  const PlaneLoss f(with_margin, plane, pairs, threads, out.evaluations);
+  // The pairs that fit within the margin at the plane's best pose; the others (a mask eroded by
+  // the segmentation, a person half missed) are left out and the best pose sought again.
+  std::vector<std::size_t> fitting = pairs;
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
   double best = 0.0;
-  Eigen::Vector2d centre = bestInPlane(f, Eigen::Vector2d::Zero(), best);
+  for (int round = 0; round < kMaxFitRounds; ++round) {
+    const PlaneLoss g(with_margin, plane, fitting, threads, out.evaluations);
+    centre = bestInPlane(g, centre, best);
+    if (config.pair_fit_px <= 0.0) break;
+    const Extrinsic at_best = plane.at(centre);
+    std::vector<std::size_t> kept;
+    for (const std::size_t i : fitting) {
+      if (with_margin.pairLoss(i, at_best) <= config.pair_fit_px) kept.push_back(i);
+    }
+    out.evaluations += 1;
+    if (kept.size() == fitting.size()) break;
+    fitting = std::move(kept);
+    if (static_cast<double>(fitting.size()) < config.min_fitting_fraction * static_cast<double>(pairs.size())) {
+      break;
+    }
+  }
+  out.fitting_pairs = fitting.size();
+  out.fitting = fitting;
+  std::sort(out.fitting.begin(), out.fitting.end());
+  out.fitting.erase(std::unique(out.fitting.begin(), out.fitting.end()), out.fitting.end());
   out.best_cost_px = best;
+  if (static_cast<double>(fitting.size()) < config.min_fitting_fraction * static_cast<double>(pairs.size())) {
+    out.skipped_because = "too few pairs fit within the margin";
+    return out;
+  }
   if (best > config.max_mean_cost_px) {
     out.skipped_because = "points do not fit within the margin";
     return out;
   }
-  const double level = best * (1.0 + config.tolerance) + kAbsoluteTolerance;
-  std::vector<Eigen::Vector2d> directions;
-  for (int k = 0; k < config.rays; ++k) {
-    const double angle = 2.0 * M_PI * k / config.rays;
-    directions.emplace_back(std::cos(angle), std::sin(angle));
+  const PlaneLoss f(with_margin, plane, fitting, threads, out.evaluations);
+  out.level_px = best * (1.0 + config.tolerance) + kAbsoluteTolerance;
+  if (!regionCentre(f, centre, out.level_px, config.rays, config.iterations, kBisections)) {
+    out.skipped_because = "region unbounded";
+    return out;
   }
-  std::vector<double> reach;
-  for (int i = 0; i < config.iterations; ++i) {
-    if (!traceOutline(f, centre, directions, level, reach)) {
-      out.skipped_because = "region unbounded";
-      return out;
-    }
-    // A region that is not convex may have its centroid outside: then keep the last centre.
-    const Eigen::Vector2d next = polygonCentroid(centre, directions, reach);
-    if (f({next})[0] > level) break;
-    centre = next;
+  // The outline around the centre in the resamples' directions: where their traces start.
+  if (!traceOutline(f, centre, rayDirections(config.resample_rays), out.level_px, config.resample_bisections,
+                    out.resample_reach_px)) {
+    out.skipped_because = "region unbounded";
+    return out;
   }
   out.extrinsic = plane.at(centre);
   out.applied = true;
   out.skipped_because.clear();
+  out.shift_rotation_px = centre.x();
+  out.shift_translation_px = centre.y();
+  return out;
+}
+
+VerticalCentringOutcome centreResample(const LossEvaluator& loss, const Extrinsic& start,
+                                       const std::vector<std::size_t>& resample,
+                                       const VerticalCentringOutcome& estimate, int threads) {
+  VerticalCentringOutcome out;
+  out.config = estimate.config;
+  out.extrinsic = start;
+  out.ran = estimate.ran;
+  if (!estimate.applied) {
+    out.skipped_because = estimate.skipped_because;
+    return out;
+  }
+  const VerticalCentringConfig& config = estimate.config;
+  const LossEvaluator with_margin =
+      loss.withPixelRule(PixelRule::kBilinear).withMargin(config.margin_px);
+  const std::vector<std::size_t> fitting =
+      config.pair_fit_px > 0.0 ? keepOnly(resample, estimate.fitting) : resample;
+  if (fitting.empty()) {
+    out.skipped_because = "no resampled pair fits within the margin";
+    return out;
+  }
+  const VerticalPlane plane(start, with_margin.centroid(fitting), with_margin.camera().fy);
+  if (!(plane.pivotDepth() > 0.0)) {
+    out.skipped_because = "pivot behind the camera";
+    return out;
+  }
+  const PlaneLoss f(with_margin, plane, fitting, threads, out.evaluations);
+  // Where the estimate's centring moved the estimate; if the resample's points do not fit there,
+  // its best pose is sought as for the estimate.
+  Eigen::Vector2d centre(estimate.shift_rotation_px, estimate.shift_translation_px);
+  double here = f({centre})[0];
+  if (here > estimate.level_px) {
+    centre = bestInPlane(f, centre, here, kResampleFirstStep, estimate.level_px);
+  }
+  out.best_cost_px = here;
+  out.level_px = std::max(estimate.level_px, here * (1.0 + config.tolerance) + kAbsoluteTolerance);
+  if (!regionCentre(f, centre, out.level_px, config.resample_rays, 1, config.resample_bisections,
+                    &estimate.resample_reach_px)) {
+    out.skipped_because = "region unbounded";
+    return out;
+  }
+  out.extrinsic = plane.at(centre);
+  out.applied = true;
+  out.skipped_because.clear();
+  out.fitting_pairs = fitting.size();
   out.shift_rotation_px = centre.x();
   out.shift_translation_px = centre.y();
   return out;

@@ -34,8 +34,9 @@ struct RingGapScene {
   double smallest_gap_px = 1e9;  // the flat stretch is +- this around the truth
 };
 
-// `erode_px` > 0 shrinks every mask by that many pixels (a segmentation that misses the edges).
-RingGapScene makeRingGapScene(std::uint64_t seed, int erode_px = 0) {
+// `erode_px` > 0 shrinks the masks of every `erode_every`-th pair by that many pixels (a
+// segmentation that misses the edges).
+RingGapScene makeRingGapScene(std::uint64_t seed, int erode_px = 0, int erode_every = 1) {
   RingGapScene s;
   Rng rng(seed);
   const Eigen::Matrix3d K_inv = s.camera.K().inverse();
@@ -71,7 +72,7 @@ RingGapScene makeRingGapScene(std::uint64_t seed, int erode_px = 0) {
         }
       }
     }
-    if (erode_px > 0) {
+    if (erode_px > 0 && i % erode_every == 0) {
       cv::erode(pair.mask, pair.mask,
                 cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * erode_px + 1, 2 * erode_px + 1)));
     }
@@ -217,9 +218,52 @@ TEST(VerticalCentring, CentresThePointsAtTheEvaluatorsTimeOffset) {
   EXPECT_GT(std::abs(off.translation_cm.y()) + 10.0 * std::abs(off.rotation_deg.x()), 1.0);
 }
 
-// Masks that miss 2 px of every edge: the points do not fit even within the 1 px margin, the
-// region would be set by the segmentation's error, and the estimate is left as refined.
-TEST(VerticalCentring, LeavesTheEstimateWhenTheGrownMasksDoNotHoldThePoints) {
+// The bootstrap's cheaper centring (centreResample): traced once from where the estimate was
+// moved, with fewer directions. A resample that is the whole data set, refined to the same pose,
+// must land where the full centring put the estimate (within its coarser outline's precision),
+// for a small fraction of the full centring's evaluations.
+TEST(VerticalCentring, AResampleIsCentredWhereTheEstimateWasForAFractionOfTheCost) {
+  const RingGapScene scene = makeRingGapScene(16);
+  const LossEvaluator loss(scene.camera, scene.pairs, LossConfig{5.0, PixelRule::kBilinear});
+  std::vector<std::size_t> all(scene.pairs.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  Extrinsic start = scene.truth;
+  start.translation.y() += 0.03;
+  const VerticalCentringOutcome estimate = centreVertically(loss, start, all, VerticalCentringConfig{}, 1);
+  ASSERT_TRUE(estimate.applied) << estimate.skipped_because;
+  const VerticalCentringOutcome resample = centreResample(loss, start, all, estimate, 1);
+  ASSERT_TRUE(resample.applied) << resample.skipped_because;
+  EXPECT_LT(std::abs(resample.shift_rotation_px - estimate.shift_rotation_px), 0.3);
+  EXPECT_LT(std::abs(resample.shift_translation_px - estimate.shift_translation_px), 0.3);
+  EXPECT_LT(largestMagnitude(verticalOffsets(scene, resample.extrinsic)), 1.0);
+  EXPECT_LT(resample.evaluations * 5, estimate.evaluations)
+      << resample.evaluations << " against " << estimate.evaluations;
+  // Half the pairs (each twice): a different region, still centred in the stretch.
+  std::vector<std::size_t> half;
+  for (std::size_t i = 0; i < all.size(); i += 2) half.insert(half.end(), {i, i});
+  const VerticalCentringOutcome other = centreResample(loss, start, half, estimate, 1);
+  ASSERT_TRUE(other.applied) << other.skipped_because;
+  EXPECT_LT(largestMagnitude(verticalOffsets(scene, other.extrinsic)), 1.5);
+}
+
+// Where the estimate was not centred, its resamples are not either, and cost nothing.
+TEST(VerticalCentring, AResampleOfAnEstimateLeftAsRefinedIsLeftAsRefined) {
+  const RingGapScene scene = makeRingGapScene(14, /*erode_px=*/2);
+  const LossEvaluator loss(scene.camera, scene.pairs, LossConfig{5.0, PixelRule::kBilinear});
+  std::vector<std::size_t> all(scene.pairs.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  const VerticalCentringOutcome estimate = centreVertically(loss, scene.truth, all, VerticalCentringConfig{}, 1);
+  ASSERT_FALSE(estimate.applied);
+  const VerticalCentringOutcome resample = centreResample(loss, scene.truth, all, estimate, 1);
+  EXPECT_FALSE(resample.applied);
+  EXPECT_EQ(resample.evaluations, 0u);
+  EXPECT_EQ(resample.extrinsic.translation, scene.truth.translation);
+  EXPECT_EQ(resample.extrinsic.rotation_vector, scene.truth.rotation_vector);
+}
+
+// Masks that miss 2 px of every edge: no pair fits even within the 1 px margin, the region
+// would be set by the segmentation's error, and the estimate is left as refined.
+TEST(VerticalCentring, LeavesTheEstimateWhenNoMaskHoldsItsPoints) {
   const RingGapScene scene = makeRingGapScene(14, /*erode_px=*/2);
   const LossEvaluator loss(scene.camera, scene.pairs, LossConfig{5.0, PixelRule::kBilinear});
   std::vector<std::size_t> all(scene.pairs.size());
@@ -228,10 +272,41 @@ TEST(VerticalCentring, LeavesTheEstimateWhenTheGrownMasksDoNotHoldThePoints) {
       centreVertically(loss, scene.truth, all, VerticalCentringConfig{}, 1);
   EXPECT_TRUE(out.ran);
   EXPECT_FALSE(out.applied);
-  EXPECT_EQ(out.skipped_because, "points do not fit within the margin");
-  EXPECT_GT(out.best_cost_px, VerticalCentringConfig{}.max_mean_cost_px);
+  EXPECT_EQ(out.skipped_because, "too few pairs fit within the margin");
+  EXPECT_LT(out.fitting_pairs, all.size() / 4);
   EXPECT_EQ(out.extrinsic.translation, scene.truth.translation);
   EXPECT_EQ(out.extrinsic.rotation_vector, scene.truth.rotation_vector);
+  // Without leaving pairs out, the mean cost gates it.
+  VerticalCentringConfig keep_all;
+  keep_all.pair_fit_px = 0.0;
+  const VerticalCentringOutcome gated = centreVertically(loss, scene.truth, all, keep_all, 1);
+  EXPECT_EQ(gated.skipped_because, "points do not fit within the margin");
+  EXPECT_GT(gated.best_cost_px, keep_all.max_mean_cost_px);
+}
+
+// A third of the pairs with masks eroded by 2 px (noisy segmentation): those pairs are left out,
+// and the others still put the estimate in the middle of their stretch.
+TEST(VerticalCentring, LeavesOutThePairsWhoseMasksDoNotHoldTheirPoints) {
+  const RingGapScene scene = makeRingGapScene(17, /*erode_px=*/2, /*erode_every=*/3);
+  const LossEvaluator loss(scene.camera, scene.pairs, LossConfig{5.0, PixelRule::kBilinear});
+  std::vector<std::size_t> all(scene.pairs.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  Extrinsic start = scene.truth;
+  start.translation.y() += 0.03;
+  const VerticalCentringOutcome out = centreVertically(loss, start, all, VerticalCentringConfig{}, 1);
+  ASSERT_TRUE(out.applied) << out.skipped_because;
+  EXPECT_EQ(out.fitting_pairs, all.size() - all.size() / 3);
+  for (std::size_t i = 0; i < all.size(); i += 3) {
+    EXPECT_FALSE(std::binary_search(out.fitting.begin(), out.fitting.end(), i)) << "eroded pair " << i;
+  }
+  // Fewer pairs bound the region, so the middle is found less closely than with all of them.
+  const double before = largestMagnitude(verticalOffsets(scene, start));
+  const double after = largestMagnitude(verticalOffsets(scene, out.extrinsic));
+  EXPECT_LT(after, 1.5) << "stretch +-" << scene.smallest_gap_px << " px";
+  EXPECT_LT(after, 0.6 * before) << "from " << before << " px";
+  VerticalCentringConfig keep_all;
+  keep_all.pair_fit_px = 0.0;
+  EXPECT_FALSE(centreVertically(loss, start, all, keep_all, 1).applied);
 }
 
 // The paper mode is the paper: no centring, and the same pose as the evolution found.

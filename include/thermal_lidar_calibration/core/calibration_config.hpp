@@ -87,16 +87,22 @@ struct TimeOffsetConfig {
 // Beyond the paper, after the local refinement (refine: local only; vertical_centring.hpp): the
 // estimate is moved to the centre of the poses that keep every point within margin_px of its
 // mask, in the plane of the image-vertical motions (rotation about the camera's x axis,
-// translation along its y axis). Applied only where the points fit that well (mean Eq. 1 cost
-// with the margin, at the best pose of that plane, <= max_mean_cost_px): with noisier masks the
-// region is set by the noise.
+// translation along its y axis). Pairs that do not fit that well at the plane's best pose (a
+// mask the segmentation eroded, a person half missed) are left out of the region; the stage is
+// applied only when at least min_fitting_fraction of the pairs fit and those fit (mean Eq. 1 cost
+// with the margin at the plane's best pose <= max_mean_cost_px).
 struct VerticalCentringConfig {
   bool enabled = true;
   double margin_px = 1.0;          // sub-pixel distance that costs nothing: the pixel grid's own
   double max_mean_cost_px = 0.01;  // applied only when the points fit at least this well
+  double pair_fit_px = 1e-4;       // a pair fits when its mean cost with the margin is <= this
+                                   // at the plane's best pose (0: keep every pair)
+  double min_fitting_fraction = 0.25;  // applied only when at least this share of the pairs fit
   double tolerance = 0.02;         // region: loss <= best * (1 + tolerance) + 1e-5 px
   int rays = 24;                   // directions sampled to trace the region's outline
   int iterations = 3;              // outline traced again from each new centre
+  int resample_rays = 8;           // the bootstrap's resamples: fewer directions,
+  int resample_bisections = 4;     // a coarser outline, traced once (centreResample)
   void validate() const;
 };
 

@@ -24,6 +24,8 @@
 
 namespace thermal_lidar_calibration {
 
+struct VerticalCentringOutcome;  // vertical_centring.hpp
+
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 
 struct UncertaintyConfig {
@@ -87,16 +89,17 @@ using UncertaintyCallback = std::function<bool(int done, int total)>;
 // `loss` supplies the pairs and camera (its pixel rule is replaced by the sub-pixel one);
 // `pairs` are indices into it, in time order (duplicates allowed), at least 3.
 // With `timing` (the time offset was estimated), `loss` must be at the estimated offset and each
-// resample refines the offset too, within timing->max_s. With `centring`, each resample's refined
-// pose goes through the vertical centring as the estimate did (vertical_centring.hpp), with its
-// points at the resample's own offset, so that the intervals describe the estimator that made it.
+// resample refines the offset too, within timing->max_s. With `centring` (the estimate's vertical
+// centring), each resample's refined pose is centred as the estimate was (centreResample in
+// vertical_centring.hpp), with its points at the resample's own offset, so that the intervals
+// describe the estimator that made the estimate.
 // Throws std::invalid_argument on a bad config or too few pairs.
 Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& estimate,
                                 const std::vector<std::size_t>& pairs,
                                 const UncertaintyConfig& config,
                                 const UncertaintyCallback& callback = {},
                                 const std::optional<TimeOffsetConfig>& timing = std::nullopt,
-                                const VerticalCentringConfig* centring = nullptr);
+                                const VerticalCentringOutcome* centring = nullptr);
 // Resample `index` of a bootstrap with `seed`: pairs.size() entries of `pairs` drawn with
 // replacement, in runs of `block_pairs` consecutive entries (the last run cut short).
 std::vector<std::size_t> resamplePairs(const std::vector<std::size_t>& pairs, int block_pairs,

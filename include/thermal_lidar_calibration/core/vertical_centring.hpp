@@ -49,6 +49,11 @@ struct VerticalCentringOutcome {
   double best_cost_px = 0.0;    // Eq. (3) with the margin at the plane's best pose
   double shift_rotation_px = 0.0;     // the move, rotation part (pixels at the pivot's depth)
   double shift_translation_px = 0.0;  // the move, translation part
+  std::size_t fitting_pairs = 0;       // pairs (with duplicates) that fit within the margin
+  std::vector<std::size_t> fitting;    // those pairs' indices, sorted, once each
+  double level_px = 0.0;               // the region: poses whose loss with the margin is <= this
+  std::vector<double> resample_reach_px;  // the region's outline around the centre, in the
+                                          // resamples' directions (centreResample starts there)
   std::uint64_t evaluations = 0;
 };
 
@@ -60,5 +65,13 @@ struct VerticalCentringOutcome {
 VerticalCentringOutcome centreVertically(const LossEvaluator& loss, const Extrinsic& start,
                                          const std::vector<std::size_t>& pairs,
                                          const VerticalCentringConfig& config, int threads);
+
+// The same centring for a bootstrap resample whose refined pose is `start`, at a fraction of the
+// cost: nothing when the estimate was not centred; otherwise the resample's pairs that fit for
+// the estimate, the region traced once from where the estimate's centring moved the estimate
+// (resample_rays directions, resample_bisections halvings), at the estimate's level.
+VerticalCentringOutcome centreResample(const LossEvaluator& loss, const Extrinsic& start,
+                                       const std::vector<std::size_t>& resample,
+                                       const VerticalCentringOutcome& estimate, int threads);
 
 }  // namespace thermal_lidar_calibration
