@@ -23,6 +23,13 @@
 // moving the camera back along its axis shrinks every projection, so the region reaches much
 // farther that way and its centre would be pulled along.
 //
+// A segmentation that misses a person's edges by a pixel or two (the realistic synthetic preset
+// erodes or dilates each mask by up to 2 px) leaves that pair's points outside even the margin,
+// and no pose fits all pairs. Such pairs are left out: the pairs whose mean cost with the margin
+// exceeds pair_fit_px at the plane's best pose are dropped and the best pose sought again, until
+// every remaining pair fits; the stage applies when at least min_fitting_fraction of the pairs
+// remain. The region is then that of the pairs whose masks hold their points.
+//
 // The plane: a rotation about the camera's x axis through the pivot (the points' centroid) and a
 // translation along the camera's y axis, both scaled to pixels at the pivot's depth. The region
 // {loss <= best * (1 + tolerance) + 1e-5} is traced by bisection along `rays` directions from
@@ -43,8 +50,8 @@ struct VerticalCentringOutcome {
   Extrinsic extrinsic;            // the centre, or the start when not applied
   bool ran = false;               // the stage was run (default run, enabled)
   bool applied = false;           // and moved the estimate to the centre
-  // Why not: "" when applied; "disabled", "points do not fit within the margin", "region
-  // unbounded", "pivot behind the camera".
+  // Why not: "" when applied; "disabled", "too few pairs fit within the margin", "points do not
+  // fit within the margin", "region unbounded", "pivot behind the camera".
   std::string skipped_because = "disabled";
   double best_cost_px = 0.0;    // Eq. (3) with the margin at the plane's best pose
   double shift_rotation_px = 0.0;     // the move, rotation part (pixels at the pivot's depth)
