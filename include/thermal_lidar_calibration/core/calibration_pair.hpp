@@ -29,6 +29,10 @@ struct Frame {
   std::vector<Eigen::Vector3f> point_velocity;
 };
 
+// Which rule made a pair (issue 23): the paper's equal counts, or person-by-person association
+// with a known extrinsic (person_association.hpp).
+enum class PairRule : std::uint8_t { kCounts, kAssociation };
+
 // A pair in the dataset D of the paper.
 struct CalibrationPair {
   double stamp_s = 0.0;
@@ -45,6 +49,13 @@ struct CalibrationPair {
   std::vector<float> point_time_s;
   std::vector<Eigen::Vector3f> point_velocity;
   std::vector<PersonMotion> motion;     // per person (label) of the pair: how it was measured
+  // Issue 23. The rule that made the pair; the frame's place among the synchronized candidate
+  // frames offered (skipped ones included: the skip rule for association pairs); and, for a
+  // frame kept as a candidate for association, the mask's person regions (personRegions,
+  // CV_16UC1) with `mask` left empty until an association makes it a pair.
+  PairRule rule = PairRule::kCounts;
+  std::uint64_t candidate_index = 0;
+  cv::Mat regions;
 };
 
 }  // namespace thermal_lidar_calibration
