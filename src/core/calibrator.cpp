@@ -258,37 +258,11 @@ void centre(const LossEvaluator& nearest, const CalibrationConfig& config, const
   result.history.push_back({"centre", 0, bilinear.loss(result.extrinsic, used), result.evaluations});
 }
 
-}  // namespace
-
-CalibrationResult calibrate(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
-                            const CalibrationConfig& config, const ProgressCallback& progress) {
-  const auto started = std::chrono::steady_clock::now();
-  config.validate();
-  if (pairs.empty()) {
-    throw std::invalid_argument("calibration: no pairs were collected");
-  }
-  CalibrationResult result;
-  result.pairs_collected = pairs.size();
-  const TimingPlan timing = planTiming(pairs, config);
-  result.time_offset_mode = timing.mode;
-  result.time_offset_asked = config.time_offset.mode;
-  result.time_offset_s = timing.start_s;
-  result.time_offset_note = timing.note;
-  result.pairs_with_motion = timing.pairs_with_motion;
-  const std::optional<double> offset =
-      timing.mode == TimeOffsetMode::kNone ? std::nullopt : std::optional<double>(timing.start_s);
-  const LossEvaluator nearest(camera, pairs, LossConfig{config.behind_camera_penalty_c1, PixelRule::kNearest, offset});
-  Rng rng(config.seed);
-  Reporter report(result, progress);
-
-  std::vector<std::size_t> used = evolve(nearest, config, rng, report, result);
-  if (config.refine.mode == RefineMode::kLocal && !result.stopped) {
-    used = refine(nearest, pairs, config, std::move(used), report, result);
-    if (!result.stopped && config.vertical_centring.enabled) {
-      centre(nearest, config, used, result);
-    }
-  }
-
+// What every result holds after its fit: the rotation written with its angle in [0, pi], the
+// losses on the pairs used and of every pair, the counts and the run time.
+void finish(const CameraModel& camera, const std::vector<CalibrationPair>& pairs, const CalibrationConfig& config,
+            const LossEvaluator& nearest, const TimingPlan& timing, const std::vector<std::size_t>& used,
+            std::chrono::steady_clock::time_point started, CalibrationResult& result) {
   // The search explores rotation vectors up to |r| = sqrt(3) * 3.5 rad; report the same
   // rotation with its angle in [0, pi] so files and logs read naturally.
   result.extrinsic.rotation_vector = matrixToRodrigues(result.extrinsic.rotationMatrix());
@@ -310,6 +284,74 @@ CalibrationResult calibrate(const CameraModel& camera, const std::vector<Calibra
   result.points_projected = nearest.pointsEvaluated() +
                             (timing.mode == TimeOffsetMode::kNone ? 0 : final_nearest.pointsEvaluated());
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+}
+
+// The result's timing fields from the plan, and the evaluator at its starting offset.
+LossEvaluator startResult(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
+                          const CalibrationConfig& config, const TimingPlan& timing, CalibrationResult& result) {
+  result.pairs_collected = pairs.size();
+  result.time_offset_mode = timing.mode;
+  result.time_offset_asked = config.time_offset.mode;
+  result.time_offset_s = timing.start_s;
+  result.time_offset_note = timing.note;
+  result.pairs_with_motion = timing.pairs_with_motion;
+  const std::optional<double> offset =
+      timing.mode == TimeOffsetMode::kNone ? std::nullopt : std::optional<double>(timing.start_s);
+  return LossEvaluator(camera, pairs, LossConfig{config.behind_camera_penalty_c1, PixelRule::kNearest, offset});
+}
+
+}  // namespace
+
+CalibrationResult calibrate(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
+                            const CalibrationConfig& config, const ProgressCallback& progress) {
+  const auto started = std::chrono::steady_clock::now();
+  config.validate();
+  if (pairs.empty()) {
+    throw std::invalid_argument("calibration: no pairs were collected");
+  }
+  CalibrationResult result;
+  const TimingPlan timing = planTiming(pairs, config);
+  const LossEvaluator nearest = startResult(camera, pairs, config, timing, result);
+  Rng rng(config.seed);
+  Reporter report(result, progress);
+
+  std::vector<std::size_t> used = evolve(nearest, config, rng, report, result);
+  if (config.refine.mode == RefineMode::kLocal && !result.stopped) {
+    used = refine(nearest, pairs, config, std::move(used), report, result);
+    if (!result.stopped && config.vertical_centring.enabled) {
+      centre(nearest, config, used, result);
+    }
+  }
+  finish(camera, pairs, config, nearest, timing, used, started, result);
+  return result;
+}
+
+CalibrationResult refineFrom(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
+                             const CalibrationConfig& config, const Extrinsic& start, double start_time_offset_s,
+                             const ProgressCallback& progress) {
+  const auto started = std::chrono::steady_clock::now();
+  config.validate();
+  if (pairs.empty()) throw std::invalid_argument("calibration: no pairs were collected");
+  if (config.refine.mode != RefineMode::kLocal) {
+    throw std::invalid_argument("refineFrom: needs refine local (refine none is the paper's method alone)");
+  }
+  CalibrationConfig from = config;
+  from.time_offset.offset_s = start_time_offset_s;
+  from.time_offset.max_s = std::max(from.time_offset.max_s, std::abs(start_time_offset_s));
+  CalibrationResult result;
+  const TimingPlan timing = planTiming(pairs, from);
+  const LossEvaluator nearest = startResult(camera, pairs, from, timing, result);
+  Reporter report(result, progress);
+  result.extrinsic = start;
+  result.evolution_extrinsic = start;
+  // The first inliers: the pairs the start already explains (Algorithm 2's test), at least the
+  // better half (selectInliers).
+  const std::vector<std::size_t> candidates = refinementCandidates(nearest, from.refine.exclude_truncated);
+  std::vector<std::size_t> used = selectInliers(nearest, start, from.outlier.threshold_px, candidates);
+  result.evolution_loss = nearest.loss(start, used);
+  used = refine(nearest, pairs, from, std::move(used), report, result);
+  if (!result.stopped && from.vertical_centring.enabled) centre(nearest, from, used, result);
+  finish(camera, pairs, from, nearest, timing, used, started, result);
   return result;
 }
 

@@ -1,5 +1,6 @@
 #include "thermal_lidar_calibration/core/dataset_builder.hpp"
 
+#include "thermal_lidar_calibration/core/person_association.hpp"
 #include "thermal_lidar_calibration/core/person_counter.hpp"
 #include "thermal_lidar_calibration/core/person_timing.hpp"
 
@@ -79,6 +80,7 @@ OfferOutcome DatasetBuilder::restore(Frame frame) {
 // silently drop work the user has already collected.
 OfferOutcome DatasetBuilder::admit(const std::function<Frame()>& decode, bool stored) {
   OfferOutcome outcome;
+  const std::uint64_t index = offered_++;
   if (!stored && gate_.consumeSkip()) {
     outcome.decision = GateDecision::kSkipped;
     return outcome;
@@ -110,11 +112,21 @@ OfferOutcome DatasetBuilder::admit(const std::function<Frame()>& decode, bool st
   outcome.decision = stored ? GateDecision::kKept
                             : gate_.decide(people.mask_people, people.cluster_people,
                                            people.smallest_cluster_points);
-  if (outcome.decision != GateDecision::kKept) return outcome;
+  // A frame the count rule did not keep but with people in both modalities may still pair by
+  // association (issue 23).
+  const bool candidate = outcome.decision != GateDecision::kKept && keep_candidates_ && !stored &&
+                         people.mask_people > 0 && people.cluster_people > 0;
+  if (outcome.decision != GateDecision::kKept && !candidate) return outcome;
 
   CalibrationPair pair;
   pair.stamp_s = frame.stamp_s;
-  pair.mask = binarizeMask(frame.mask);
+  pair.candidate_index = index;
+  if (candidate) {
+    pair.rule = PairRule::kAssociation;
+    pair.regions = personRegions(frame.mask);  // the mask itself follows once a pair is made
+  } else {
+    pair.mask = binarizeMask(frame.mask);
+  }
   // A decoder may wrap a message buffer (cv_bridge::toCvShare): keep a copy we own.
   pair.image = frame.image.u != nullptr ? frame.image : frame.image.clone();
   pair.points = std::move(frame.points);
@@ -133,6 +145,10 @@ OfferOutcome DatasetBuilder::admit(const std::function<Frame()>& decode, bool st
 }
 
 void DatasetBuilder::keep(CalibrationPair pair) {
+  if (pair.rule == PairRule::kAssociation) {
+    candidates_.push_back(std::move(pair));
+    return;
+  }
   pairs_.push_back(std::move(pair));
   if (pairs_.size() >= kLockPairs) {
     ids_locked_ = true;
@@ -213,8 +229,10 @@ void DatasetBuilder::checkFrameIds(const Frame& frame) {
     if (++support > tentative_support_) {
       // These ids have been seen in more valid frames than the tentative ones: the tentative
       // ids came from a few stray frames. Their pairs (fewer than kLockPairs) go.
-      pairs_dropped_for_ids_ += pairs_.size() + pending_.size();
+      for (const CalibrationPair& p : pending_) pairs_dropped_for_ids_ += p.rule == PairRule::kCounts ? 1 : 0;
+      pairs_dropped_for_ids_ += pairs_.size();
       pairs_.clear();
+      candidates_.clear();
       pending_.clear();
       camera_frame_ = ids.first;
       lidar_frame_ = ids.second;
@@ -238,6 +256,12 @@ std::optional<FrameIdConflict> DatasetBuilder::frameIdConflict(std::uint64_t min
                          refused_in_a_row_};
 }
 
+std::vector<CalibrationPair> DatasetBuilder::takeCandidates() {
+  std::vector<CalibrationPair> out;
+  out.swap(candidates_);
+  return out;
+}
+
 std::vector<CalibrationPair> DatasetBuilder::takePairs() {
   std::vector<CalibrationPair> out;
   out.swap(pairs_);
@@ -246,6 +270,8 @@ std::vector<CalibrationPair> DatasetBuilder::takePairs() {
 
 void DatasetBuilder::reset() {
   pairs_.clear();
+  candidates_.clear();
+  offered_ = 0;
   pending_.clear();
   scans_.clear();
   gate_.reset();

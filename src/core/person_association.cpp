@@ -173,9 +173,10 @@ FrameAssociation associateClusters(const CameraModel& camera, const cv::Mat& reg
 }
 
 FrameAssociation associateFrame(const CameraModel& camera, const CalibrationPair& frame,
-                                const Extrinsic& extrinsic, double time_offset_s,
+                                const Extrinsic& extrinsic, std::optional<double> time_offset_s,
                                 const AssociationConfig& config) {
-  return associateClusters(camera, frame.regions, pointsAtImageTime(frame, time_offset_s), frame.labels,
+  if (!time_offset_s) return associateClusters(camera, frame.regions, frame.points, frame.labels, extrinsic, config);
+  return associateClusters(camera, frame.regions, pointsAtImageTime(frame, *time_offset_s), frame.labels,
                            extrinsic, config);
 }
 

@@ -351,3 +351,36 @@ TEST(DatasetBuilder, LockedIdsRefuseOthersAndReportAConflictThatPersists) {
   EXPECT_FALSE(builder.frameIdsLocked());
   EXPECT_EQ(offer(builder, frameWithIds("cam2", "lidar2", 40.0)).decision, GateDecision::kKept);
 }
+
+// Issue 23: with association on, the frames the count rule rejects but that show people in both
+// modalities are kept aside as candidates; skipped and empty frames are not, and nothing changes
+// for the count rule's pairs or counts.
+TEST(DatasetBuilder, KeepsAssociationCandidatesOnlyWhenAskedAndNeverSkippedOnes) {
+  for (const bool keep : {false, true}) {
+    tlc::DatasetBuilder builder(camera(), gate(1));
+    builder.keepAssociationCandidates(keep);
+    EXPECT_EQ(builder.offer([] { return frame(2, 3, 5, 1.0); }).decision, GateDecision::kCountMismatch);
+    EXPECT_EQ(builder.offer([] { return frame(1, 1, 5, 1.1); }).decision, GateDecision::kKept);
+    EXPECT_EQ(builder.offer([] { return frame(1, 2, 5, 1.2); }).decision, GateDecision::kSkipped);
+    EXPECT_EQ(builder.offer([] { return frame(0, 2, 5, 1.3); }).decision, GateDecision::kCountMismatch);
+    EXPECT_EQ(builder.offer([] { return frame(1, 2, 5, 1.4); }).decision, GateDecision::kCountMismatch);
+    ASSERT_EQ(builder.pairs().size(), 1u);
+    EXPECT_EQ(builder.pairs()[0].candidate_index, 1u);
+    EXPECT_EQ(builder.pairs()[0].rule, tlc::PairRule::kCounts);
+    EXPECT_EQ(builder.counts()[GateDecision::kCountMismatch], 3u);
+    if (!keep) {
+      EXPECT_TRUE(builder.candidates().empty());
+      continue;
+    }
+    const std::vector<tlc::CalibrationPair> candidates = builder.takeCandidates();
+    ASSERT_EQ(candidates.size(), 2u);  // not the skipped one, not the one without a mask person
+    EXPECT_EQ(candidates[0].candidate_index, 0u);
+    EXPECT_EQ(candidates[1].candidate_index, 4u);
+    EXPECT_EQ(candidates[0].rule, tlc::PairRule::kAssociation);
+    EXPECT_TRUE(candidates[0].mask.empty());
+    ASSERT_EQ(candidates[0].regions.type(), CV_16UC1);
+    EXPECT_EQ(candidates[0].regions.at<std::uint16_t>(10, 15), 2);  // the mask's id 2
+    EXPECT_EQ(candidates[0].points.size(), 15u);
+    EXPECT_TRUE(builder.candidates().empty());
+  }
+}

@@ -80,4 +80,13 @@ CalibrationResult calibrate(const CameraModel& camera, const std::vector<Calibra
                             const CalibrationConfig& config,
                             const ProgressCallback& progress = {});
 
+// Beyond the paper (issue 23): the refinement stage alone, from a known extrinsic and the time
+// offset it goes with (the start of the search when time_offset_mode is estimate), as
+// calibrate() refines Algorithm 2's fit. The first inliers are the pairs within
+// threshold_sample_px of `start` (at least the better half). The result's evolution_* fields
+// hold the start. Throws std::invalid_argument as calibrate() does, and for refine none.
+CalibrationResult refineFrom(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
+                             const CalibrationConfig& config, const Extrinsic& start, double start_time_offset_s,
+                             const ProgressCallback& progress = {});
+
 }  // namespace thermal_lidar_calibration

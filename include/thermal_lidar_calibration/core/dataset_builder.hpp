@@ -78,6 +78,15 @@ class DatasetBuilder {
   // watch takes each pair as it is kept and must not hold hours of them here).
   std::vector<CalibrationPair> takePairs();
 
+  // Issue 23: also keep the decoded frames the count rule did not keep but that show people in
+  // both modalities (unequal counts, more than H_max, a small cluster), as candidates for pairing
+  // by association once an extrinsic is known. Skipped frames stay skipped. Off by default (the
+  // paper keeps nothing else).
+  void keepAssociationCandidates(bool keep) { keep_candidates_ = keep; }
+  // The candidates (rule kAssociation, regions set, mask empty), in time order, handed over.
+  std::vector<CalibrationPair> takeCandidates();
+  const std::vector<CalibrationPair>& candidates() const { return candidates_; }
+
   const std::vector<CalibrationPair>& pairs() const { return pairs_; }
   const RejectionCounts& counts() const { return gate_.counts(); }
   const CameraModel& camera() const { return camera_; }
@@ -97,6 +106,9 @@ class DatasetBuilder {
   CameraModel camera_;
   FrameGate gate_;
   std::vector<CalibrationPair> pairs_;
+  bool keep_candidates_ = false;
+  std::vector<CalibrationPair> candidates_;
+  std::uint64_t offered_ = 0;  // candidate frames offered so far (candidate_index)
   std::string camera_frame_, lidar_frame_;
   bool ids_locked_ = false;
   std::uint64_t tentative_support_ = 0;         // valid frames with the tentative ids

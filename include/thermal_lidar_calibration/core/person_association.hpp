@@ -65,9 +65,10 @@ FrameAssociation associateClusters(const CameraModel& camera, const cv::Mat& reg
                                    const AssociationConfig& config);
 
 // A candidate frame (a CalibrationPair with `regions` set) associated at the extrinsic and time
-// offset: its points at the image's instant (person_timing.hpp) are matched.
+// offset: with an offset its points at the image's instant (person_timing.hpp) are matched,
+// without one the points as captured (the loss does the same).
 FrameAssociation associateFrame(const CameraModel& camera, const CalibrationPair& frame,
-                                const Extrinsic& extrinsic, double time_offset_s,
+                                const Extrinsic& extrinsic, std::optional<double> time_offset_s,
                                 const AssociationConfig& config);
 
 // The pair an association makes of a candidate frame: only the matched clusters' points (with

@@ -1,0 +1,82 @@
+#pragma once
+// The default run's pairing (issue 23, beyond the paper): a first fit on the count rule's pairs
+// exactly as the paper makes it, then every candidate frame (a frame the count rule did not keep
+// but with people in both modalities) paired person by person at the current extrinsic
+// (person_association.hpp), a refit on the enlarged set, and again, until the set stops
+// changing. A pair made by association alone never decides the first fit: the association must
+// not be able to drag a wrong extrinsic into a self-consistent one. An initial extrinsic (a
+// result file the user gives) replaces the first fit only when the count rule's pairs agree
+// with it; otherwise it is refused and the paper's first fit is run, and the note says so.
+// pairing counts, or refine none (the paper's method), is the count rule's fit alone. ROS-free.
+
+#include "thermal_lidar_calibration/core/calibration_config.hpp"
+#include "thermal_lidar_calibration/core/calibration_pair.hpp"
+#include "thermal_lidar_calibration/core/calibrator.hpp"
+#include "thermal_lidar_calibration/core/camera_model.hpp"
+#include "thermal_lidar_calibration/core/person_association.hpp"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace thermal_lidar_calibration {
+
+enum class PairingMode : std::uint8_t { kCounts, kAssociation };
+const char* toString(PairingMode mode);  // "counts", "association"
+
+struct PairingConfig {
+  PairingMode mode = PairingMode::kAssociation;
+  AssociationConfig association;
+  // An initial extrinsic is used only when at least this share of the count rule's pairs lie
+  // within threshold_sample_px of it (Eq. 1). At the truth, 35-100 % of the count rule's pairs do
+  // on the synthetic drives (the rest pair different objects); 5 deg or 30 cm off, none.
+  double min_initial_agreement = 0.3;
+  void validate() const;  // throws std::invalid_argument naming the key and range
+};
+
+// What the gate settings mean for association pairs: H_max caps the people matched in a pair,
+// and after any pair the next skip_frames candidate frames make none.
+struct PairingLimits {
+  int max_people = 3;
+  int skip_frames = 3;
+};
+
+struct InitialExtrinsic {
+  Extrinsic extrinsic;
+  std::optional<double> time_offset_s;  // the file's, when it applied one
+  std::string origin;                   // for the note: the file's path
+};
+
+struct AssociatedCalibration {
+  CalibrationResult result;
+  // The pairs the result's per-pair fields index: the count rule's, then (merged in time order)
+  // those made by association.
+  std::vector<CalibrationPair> pairs;
+  std::size_t counts_pairs = 0;
+  std::size_t association_pairs = 0;
+  int rounds = 0;           // association rounds run (0: none)
+  bool converged = true;    // the set stopped changing within association_max_rounds
+  bool initial_used = false;
+  std::string note;         // one line when something differs from the plain path (refused start, ...)
+};
+
+// Throws std::invalid_argument as calibrate() does (no count-rule pairs, bad config).
+AssociatedCalibration calibrateWithAssociation(const CameraModel& camera, std::vector<CalibrationPair> count_pairs,
+                                               const std::vector<CalibrationPair>& candidates,
+                                               const CalibrationConfig& config, const PairingConfig& pairing,
+                                               const PairingLimits& limits,
+                                               const std::optional<InitialExtrinsic>& initial = std::nullopt,
+                                               const ProgressCallback& progress = {});
+
+// The association pairs of `candidates` at an extrinsic and time offset, with the skip rule
+// counted from the count rule's pairs (`count_indices`, their candidate_index, sorted) and from
+// each other. With a time offset the points are moved to the image's instant (as the loss moves
+// them); without one (timing not applied) they stay where they were captured. Exposed for tests
+// and measurements.
+std::vector<CalibrationPair> associatePairs(const CameraModel& camera, const std::vector<CalibrationPair>& candidates,
+                                            const std::vector<std::uint64_t>& count_indices,
+                                            const Extrinsic& extrinsic, std::optional<double> time_offset_s,
+                                            const AssociationConfig& config, const PairingLimits& limits);
+
+}  // namespace thermal_lidar_calibration

@@ -1,0 +1,206 @@
+#include "thermal_lidar_calibration/core/association_refit.hpp"
+
+#include "thermal_lidar_calibration/core/loss.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+namespace thermal_lidar_calibration {
+namespace {
+
+// Which clusters of which candidate frame an association paired: the set the rounds compare.
+using Signature = std::vector<std::pair<std::uint64_t, std::vector<std::int32_t>>>;
+
+Signature signatureOf(const std::vector<CalibrationPair>& pairs) {
+  Signature s;
+  for (const CalibrationPair& p : pairs) {
+    std::vector<std::int32_t> labels = p.labels;
+    std::sort(labels.begin(), labels.end());
+    labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+    s.emplace_back(p.candidate_index, std::move(labels));
+  }
+  return s;
+}
+
+// The count rule's pairs and the association's, in candidate (time) order.
+std::vector<CalibrationPair> merged(const std::vector<CalibrationPair>& counts,
+                                    const std::vector<CalibrationPair>& associated) {
+  std::vector<CalibrationPair> out;
+  out.reserve(counts.size() + associated.size());
+  std::merge(counts.begin(), counts.end(), associated.begin(), associated.end(), std::back_inserter(out),
+             [](const CalibrationPair& a, const CalibrationPair& b) { return a.candidate_index < b.candidate_index; });
+  return out;
+}
+
+// The time offset the result's loss applied (none: points stay where they were captured).
+std::optional<double> appliedOffset(const CalibrationResult& r) {
+  if (r.time_offset_mode == TimeOffsetMode::kNone) return std::nullopt;
+  return r.time_offset_s;
+}
+
+// The share of the count rule's pairs within threshold_sample_px of `initial` (Eq. 1).
+double agreement(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
+                 const CalibrationConfig& config, const InitialExtrinsic& initial) {
+  std::optional<double> offset;
+  if (config.time_offset.mode != TimeOffsetMode::kNone) {
+    offset = initial.time_offset_s.value_or(config.time_offset.offset_s);
+  }
+  const LossEvaluator nearest(camera, pairs, LossConfig{config.behind_camera_penalty_c1, PixelRule::kNearest, offset});
+  std::size_t within = 0;
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    within += nearest.pairLoss(i, initial.extrinsic) <= config.outlier.threshold_px ? 1 : 0;
+  }
+  return static_cast<double>(within) / static_cast<double>(pairs.size());
+}
+
+// The first fit: from the initial extrinsic when the count rule's pairs agree with it, else the
+// paper's (Algorithm 1 or 2 and the refinement, exactly as without association).
+CalibrationResult firstFit(const CameraModel& camera, const std::vector<CalibrationPair>& counts,
+                           const CalibrationConfig& config, const PairingConfig& pairing,
+                           const std::optional<InitialExtrinsic>& initial, const ProgressCallback& progress,
+                           AssociatedCalibration& out) {
+  if (!initial) return calibrate(camera, counts, config, progress);
+  if (counts.empty()) throw std::invalid_argument("calibration: no pairs were collected");
+  const double share = agreement(camera, counts, config, *initial);
+  char note[400];
+  if (share >= pairing.min_initial_agreement) {
+    out.initial_used = true;
+    std::snprintf(note, sizeof(note),
+                  "started from the initial extrinsic %s: %.0f %% of the count rule's %zu pairs agree with it",
+                  initial->origin.c_str(), 100.0 * share, counts.size());
+    out.note = note;
+    const double offset = initial->time_offset_s.value_or(config.time_offset.offset_s);
+    return refineFrom(camera, counts, config, initial->extrinsic, offset, progress);
+  }
+  std::snprintf(note, sizeof(note),
+                "initial extrinsic %s refused: only %.0f %% of the count rule's %zu pairs lie within "
+                "threshold_sample_px of it (initial_extrinsic_min_agreement %.0f %%); started from the paper's fit",
+                initial->origin.c_str(), 100.0 * share, counts.size(), 100.0 * pairing.min_initial_agreement);
+  out.note = note;
+  return calibrate(camera, counts, config, progress);
+}
+
+// The refit's result, with what the first fit found that the refit does not redo (the evolution,
+// its history, the work counted).
+void carryOver(const CalibrationResult& first, CalibrationResult& refit) {
+  refit.evolution_extrinsic = first.evolution_extrinsic;
+  refit.evolution_loss = first.evolution_loss;
+  refit.outlier_fits_accepted = first.outlier_fits_accepted;
+  std::vector<ConvergenceStep> history = first.history;
+  history.insert(history.end(), refit.history.begin(), refit.history.end());
+  refit.history = std::move(history);
+}
+
+}  // namespace
+
+const char* toString(PairingMode mode) {
+  return mode == PairingMode::kCounts ? "counts" : "association";
+}
+
+void PairingConfig::validate() const {
+  association.validate();
+  if (!(min_initial_agreement >= 0.0 && min_initial_agreement <= 1.0)) {
+    std::ostringstream os;
+    os << "initial_extrinsic_min_agreement = " << min_initial_agreement << " is out of range: must be in [0, 1]";
+    throw std::invalid_argument(os.str());
+  }
+}
+
+std::vector<CalibrationPair> associatePairs(const CameraModel& camera, const std::vector<CalibrationPair>& candidates,
+                                            const std::vector<std::uint64_t>& count_indices,
+                                            const Extrinsic& extrinsic, std::optional<double> time_offset_s,
+                                            const AssociationConfig& config, const PairingLimits& limits) {
+  std::vector<CalibrationPair> out;
+  std::size_t next_count = 0;
+  bool have_last = false;
+  std::uint64_t last = 0;  // candidate index of the latest pair, either rule
+  for (const CalibrationPair& frame : candidates) {
+    while (next_count < count_indices.size() && count_indices[next_count] < frame.candidate_index) {
+      last = have_last ? std::max(last, count_indices[next_count]) : count_indices[next_count];
+      have_last = true;
+      ++next_count;
+    }
+    if (have_last && frame.candidate_index <= last + static_cast<std::uint64_t>(limits.skip_frames)) continue;
+    const FrameAssociation a = associateFrame(camera, frame, extrinsic, time_offset_s, config);
+    if (a.matches.empty() || static_cast<int>(a.matches.size()) > limits.max_people) continue;
+    std::optional<CalibrationPair> pair = associatedPair(frame, a);
+    if (!pair) continue;
+    out.push_back(std::move(*pair));
+    last = frame.candidate_index;
+    have_last = true;
+  }
+  return out;
+}
+
+AssociatedCalibration calibrateWithAssociation(const CameraModel& camera, std::vector<CalibrationPair> count_pairs,
+                                               const std::vector<CalibrationPair>& candidates,
+                                               const CalibrationConfig& config, const PairingConfig& pairing,
+                                               const PairingLimits& limits,
+                                               const std::optional<InitialExtrinsic>& initial,
+                                               const ProgressCallback& progress) {
+  const auto started = std::chrono::steady_clock::now();
+  pairing.validate();
+  AssociatedCalibration out;
+  out.counts_pairs = count_pairs.size();
+  const bool associate = pairing.mode == PairingMode::kAssociation && config.refine.mode == RefineMode::kLocal;
+  // The paper's mode takes no start either: it is the paper's method alone.
+  const std::optional<InitialExtrinsic> start = associate ? initial : std::nullopt;
+  if (initial && !start) out.note = "initial extrinsic not used: pairing counts / refine none fit as the paper does";
+
+  const CalibrationResult first = firstFit(camera, count_pairs, config, pairing, start, progress, out);
+  out.result = first;
+  out.pairs = std::move(count_pairs);
+  if (!associate || candidates.empty() || first.stopped) return out;
+
+  std::vector<std::uint64_t> count_indices;
+  for (const CalibrationPair& p : out.pairs) count_indices.push_back(p.candidate_index);
+  const std::vector<CalibrationPair> counts = out.pairs;
+  std::uint64_t evaluations = first.evaluations, points = first.points_projected;
+  Signature previous;
+  out.converged = false;
+  for (int round = 1; round <= pairing.association.max_rounds; ++round) {
+    const std::vector<CalibrationPair> associated =
+        associatePairs(camera, candidates, count_indices, out.result.extrinsic, appliedOffset(out.result),
+                       pairing.association, limits);
+    out.rounds = round;
+    Signature now = signatureOf(associated);
+    if (now == previous) {  // the last refit was on this very set
+      out.converged = true;
+      break;
+    }
+    if (associated.empty()) {  // nothing pairs at this extrinsic: the count rule's fit stands
+      out.result = first;
+      out.pairs = counts;
+      out.association_pairs = 0;
+      out.converged = true;
+      break;
+    }
+    std::vector<CalibrationPair> enlarged = merged(counts, associated);
+    CalibrationResult refit = refineFrom(camera, enlarged, config, out.result.extrinsic,
+                                         out.result.time_offset_s, progress);
+    evaluations += refit.evaluations;
+    points += refit.points_projected;
+    carryOver(first, refit);
+    out.result = std::move(refit);
+    out.pairs = std::move(enlarged);
+    out.association_pairs = associated.size();
+    previous = std::move(now);
+    if (out.result.stopped) break;
+  }
+  out.result.evaluations = evaluations;
+  out.result.points_projected = points;
+  out.result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  if (!out.converged && !out.result.stopped) {
+    char note[200];
+    std::snprintf(note, sizeof(note), "association still changed the pairs after association_max_rounds %d",
+                  pairing.association.max_rounds);
+    out.note += (out.note.empty() ? "" : "; ") + std::string(note);
+  }
+  return out;
+}
+
+}  // namespace thermal_lidar_calibration
