@@ -15,8 +15,8 @@ namespace {
 // How far to trust the fit: bootstrap intervals, coverage, verdict, the reference's standing.
 // The bootstrap draws from the calibration's seed, uses its threads and its time offset range,
 // so one seed gives one answer in both front ends.
-void assess(const CalibrationJobRequest& request, const JobCallback& callback,
-            CalibrationJobOutcome& out) {
+void assess(const CalibrationJobRequest& request, const std::vector<CalibrationPair>& pairs,
+            const JobCallback& callback, CalibrationJobOutcome& out) {
   const CalibrationConfig& calibration = request.parameters.calibration;
   QualityConfig config = request.parameters.quality;
   config.uncertainty.seed = calibration.seed;
@@ -25,7 +25,7 @@ void assess(const CalibrationJobRequest& request, const JobCallback& callback,
   std::optional<Extrinsic> reference;
   if (request.reference) reference = request.reference->extrinsic;
   try {
-    out.quality = assessQuality(request.camera, request.pairs, *out.result, config,
+    out.quality = assessQuality(request.camera, pairs, *out.result, config,
                                 calibration.behind_camera_penalty_c1, reference,
                                 [&](int done, int total) {
                                   if (!callback) return true;
@@ -46,7 +46,8 @@ void assess(const CalibrationJobRequest& request, const JobCallback& callback,
 }
 
 // The result against the known truth, and the truth's own loss on the pairs the result used.
-TruthComparison compareWithTruth(const CalibrationJobRequest& request, const CalibrationResult& result) {
+TruthComparison compareWithTruth(const CalibrationJobRequest& request, const std::vector<CalibrationPair>& pairs,
+                                 const CalibrationResult& result) {
   TruthComparison cmp;
   cmp.truth_file = request.truth->file;
   cmp.rotation_error_rad = rotationErrorRad(result.extrinsic, request.truth->extrinsic);
@@ -57,7 +58,7 @@ TruthComparison compareWithTruth(const CalibrationJobRequest& request, const Cal
   if (result.time_offset_mode != TimeOffsetMode::kNone) {
     loss_config.time_offset_s = request.truth->time_offset_s.value_or(result.time_offset_s);
   }
-  const LossEvaluator evaluator(request.camera, request.pairs, loss_config);
+  const LossEvaluator evaluator(request.camera, pairs, loss_config);
   cmp.truth_loss = evaluator.loss(request.truth->extrinsic, usedPairs(result));
   return cmp;
 }
@@ -65,7 +66,7 @@ TruthComparison compareWithTruth(const CalibrationJobRequest& request, const Cal
 void writeReport(const CalibrationJobRequest& request, CalibrationJobOutcome& out) {
   ReportInput report;
   report.camera = &request.camera;
-  report.pairs = &request.pairs;
+  report.pairs = &out.fitted_pairs;
   report.result = &*out.result;
   report.quality = out.quality ? &*out.quality : nullptr;
   report.threshold_px = request.parameters.calibration.outlier.threshold_px;
@@ -79,7 +80,58 @@ void writeReport(const CalibrationJobRequest& request, CalibrationJobOutcome& ou
   }
 }
 
+// The initial extrinsic the request gives, or the one its parameters name (read here so that both
+// front ends honour the key); nullopt without either.
+std::optional<InitialExtrinsic> initialExtrinsic(const CalibrationJobRequest& request) {
+  if (request.initial) return request.initial;
+  const std::string& path = request.parameters.initial_extrinsic_file;
+  if (path.empty()) return std::nullopt;
+  return readInitialExtrinsic(path);
+}
+
+// The first fit on the count rule's pairs, then (pairing association) the association rounds.
+AssociatedCalibration fit(const CalibrationJobRequest& request, const JobCallback& callback) {
+  const CoreParameters& p = request.parameters;
+  PairingConfig pairing = p.pairing;
+  pairing.association.min_points_in_view = p.gate.min_points_per_cluster;
+  return calibrateWithAssociation(request.camera, request.pairs, request.candidates, p.calibration, pairing,
+                                  PairingLimits{p.gate.max_people, p.gate.skip_frames}, initialExtrinsic(request),
+                                  [&](const Progress& progress) {
+                                    if (!callback) return true;
+                                    JobProgress job;
+                                    job.fit = progress;
+                                    return callback(job);
+                                  });
+}
+
+PairingSummary summarise(const CalibrationJobRequest& request, const AssociatedCalibration& fitted) {
+  PairingSummary s;
+  const bool associate = request.parameters.pairing.mode == PairingMode::kAssociation &&
+                         request.parameters.calibration.refine.mode == RefineMode::kLocal;
+  s.mode = associate ? PairingMode::kAssociation : PairingMode::kCounts;
+  s.counts = fitted.counts_pairs;
+  s.association = fitted.association_pairs;
+  s.candidates = associate ? request.candidates.size() : 0;
+  s.rounds = fitted.rounds;
+  s.converged = fitted.converged;
+  s.initial_used = fitted.initial_used;
+  s.note = fitted.note;
+  return s;
+}
+
 }  // namespace
+
+InitialExtrinsic readInitialExtrinsic(const std::string& path) {
+  try {
+    InitialExtrinsic initial;
+    initial.extrinsic = readExtrinsicFile(path);
+    initial.time_offset_s = readAppliedTimeOffset(path);
+    initial.origin = path;
+    return initial;
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("initial_extrinsic_file: ") + e.what());
+  }
+}
 
 std::string saveResultFile(const std::string& path, const CalibrationResult& result,
                            const ResultContext& context) {
@@ -97,19 +149,17 @@ CalibrationJobOutcome runCalibrationJob(const CalibrationJobRequest& request,
   CalibrationJobOutcome out;
   out.pairs = request.pairs.size();
   try {
-    out.result = calibrate(request.camera, request.pairs, request.parameters.calibration,
-                           [&](const Progress& p) {
-                             if (!callback) return true;
-                             JobProgress job;
-                             job.fit = p;
-                             return callback(job);
-                           });
+    AssociatedCalibration fitted = fit(request, callback);
+    out.result = std::move(fitted.result);
+    out.pairing = summarise(request, fitted);
+    out.fitted_pairs = std::move(fitted.pairs);
   } catch (const std::exception& e) {
     out.error = e.what();
     return out;
   }
+  out.pairs = out.fitted_pairs.size();
   const CalibrationResult& result = *out.result;
-  if (!result.stopped) assess(request, callback, out);
+  if (!result.stopped) assess(request, out.fitted_pairs, callback, out);
 
   ResultContext& context = out.context;
   context.lidar_frame = request.lidar_frame.empty() ? "lidar" : request.lidar_frame;
@@ -117,9 +167,13 @@ CalibrationJobOutcome runCalibrationJob(const CalibrationJobRequest& request,
   context.source = request.source;
   context.parameters = request.parameters;
   context.quality = out.quality;
-  context.pair_stamps_s.reserve(request.pairs.size());
-  for (const CalibrationPair& pair : request.pairs) context.pair_stamps_s.push_back(pair.stamp_s);
-  if (request.truth) context.truth = compareWithTruth(request, result);
+  context.pairing = out.pairing;
+  context.pair_stamps_s.reserve(out.fitted_pairs.size());
+  for (const CalibrationPair& pair : out.fitted_pairs) {
+    context.pair_stamps_s.push_back(pair.stamp_s);
+    context.pair_rules.push_back(pair.rule);
+  }
+  if (request.truth) context.truth = compareWithTruth(request, out.fitted_pairs, result);
 
   if (result.stopped && !request.write_stopped_result) return out;
   // The last chance to stop before anything reaches the disk (the node's ~reset during the

@@ -31,6 +31,18 @@ std::string formatCalibrationSummary(const SummaryInput& in) {
   s << "  frames           " << in.counts.summary() << "\n";
   s << "  pairs            " << r.pairs_collected << " kept, " << r.pairs_used << " used ("
     << in.algorithm_text << ")\n";
+  if (in.pairing) {
+    const PairingSummary& p = *in.pairing;
+    s << "  pairs by rule    counts " << p.counts << ", association " << p.association;
+    if (p.mode == PairingMode::kAssociation) {
+      s << " (of " << p.candidates << " frames the count rule did not keep; " << p.rounds << " round"
+        << (p.rounds == 1 ? "" : "s") << (p.converged ? "" : ", still changing") << ")";
+    } else {
+      s << " (pairing counts)";
+    }
+    s << "\n";
+    if (!p.note.empty()) s << "  association      " << p.note << "\n";
+  }
   s << "  rotation_vector  " << fmt("[%.6f, %.6f, %.6f] rad", e.rotation_vector.x(),
                                     e.rotation_vector.y(), e.rotation_vector.z())
     << "  (rotation angle " << fmt("%.3f", Eigen::AngleAxisd(R).angle() * kDeg, 0, 0)

@@ -14,6 +14,7 @@
 
 #include "thermal_lidar_calibration/app/parameters.hpp"
 
+#include "thermal_lidar_calibration/app/association_parameters.hpp"
 #include "thermal_lidar_calibration/app/point_time_field.hpp"
 
 #include <limits>
@@ -277,6 +278,7 @@ ParameterTable<CoreParameters> makeCoreParameterTable() {
   top.integer("pairs_required", &CoreParameters::pairs_required, {1, 100000}, "",
               "node: pairs to collect before optimizing",
               "calibrate_bag uses every pair in the bag");
+  addAssociationRows(t);
   addQualityRows(t);
   addTimingRows(t);
   addDriftRows(t);
@@ -299,6 +301,7 @@ CoreParameters loadCoreParameters(const ParameterSource& source) {
   p.quality.validate();
   p.motion.validate();
   p.drift.validate();
+  p.pairing.validate();
   try {
     PointTimeField::parse(p.point_time_field);
   } catch (const std::invalid_argument& e) {

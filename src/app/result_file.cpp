@@ -96,6 +96,21 @@ void writeResultFile(const std::string& path, const CalibrationResult& result,
   out << YAML::Key << "loss" << YAML::Value << result.loss;
   out << YAML::Key << "pairs_used" << YAML::Value << result.pairs_used;
   out << YAML::Key << "pairs_collected" << YAML::Value << result.pairs_collected;
+  if (context.pairing) {
+    // Issue 23: how many pairs each rule made, and how the association went.
+    const PairingSummary& p = *context.pairing;
+    out << YAML::Key << "pairs_by_rule" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "counts" << YAML::Value << p.counts;
+    out << YAML::Key << "association" << YAML::Value << p.association << YAML::EndMap;
+    out << YAML::Key << "association" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "pairing" << YAML::Value << toString(p.mode);
+    out << YAML::Key << "candidate_frames" << YAML::Value << p.candidates;
+    out << YAML::Key << "rounds" << YAML::Value << p.rounds;
+    out << YAML::Key << "converged" << YAML::Value << p.converged;
+    out << YAML::Key << "initial_extrinsic_used" << YAML::Value << p.initial_used;
+    if (!p.note.empty()) out << YAML::Key << "note" << YAML::Value << p.note;
+    out << YAML::EndMap;
+  }
   out << YAML::Key << "loss_bilinear" << YAML::Value << result.loss_bilinear;
   out << YAML::Key << "stopped_early" << YAML::Value << result.stopped;
   // Issue 21: the camera's time offset the extrinsic goes with (0 and none: timing ignored).
@@ -156,6 +171,10 @@ void writeResultFile(const std::string& path, const CalibrationResult& result,
         << (i < result.pair_losses.size() ? result.pair_losses[i] : 0.0);
     out << YAML::Key << "inlier" << YAML::Value
         << (i < result.inliers.size() ? static_cast<bool>(result.inliers[i]) : true);
+    if (i < context.pair_rules.size()) {
+      out << YAML::Key << "rule" << YAML::Value
+          << (context.pair_rules[i] == PairRule::kAssociation ? "association" : "counts");
+    }
     out << YAML::EndMap;
   }
   out << YAML::EndSeq;

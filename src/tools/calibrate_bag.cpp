@@ -256,6 +256,8 @@ BagPairs readPairs(const CalibrateBagOptions& options, CoreParameters& params, P
 
   read.builder = std::make_unique<DatasetBuilder>(read.camera, params.gate, params.motion);
   DatasetBuilder& builder = *read.builder;
+  builder.keepAssociationCandidates(!options.monitor && params.pairing.mode == PairingMode::kAssociation &&
+                                    params.calibration.refine.mode == RefineMode::kLocal);
   IngestCallbacks callbacks;
   callbacks.warn = warn;
   callbacks.progress = [&](const BagIngestStats& s, const DatasetBuilder& b) {
@@ -287,10 +289,13 @@ BagPairs readPairs(const CalibrateBagOptions& options, CoreParameters& params, P
 // stderr. Throws when the fit failed or a file asked for could not be written.
 CalibrationJobOutcome calibratePairs(const CalibrateBagOptions& options, const CoreParameters& params,
                                      BagPairs& read, const std::optional<Extrinsic>& truth,
-                                     const std::optional<Extrinsic>& reference, ProgressLine& progress) {
+                                     const std::optional<Extrinsic>& reference,
+                                     const std::optional<InitialExtrinsic>& initial, ProgressLine& progress) {
   CalibrationJobRequest job;
   job.camera = read.camera;
   job.pairs = read.builder->takePairs();
+  job.candidates = read.builder->takeCandidates();
+  job.initial = initial;
   job.parameters = params;
   if (reference) job.reference = JobReference{*reference, "file", options.reference};
   if (truth) {
@@ -353,13 +358,16 @@ int runCalibrateBag(const CalibrateBagOptions& options) {
   checkOutputsWritable(options);
   const std::optional<Extrinsic> truth = readOptionalExtrinsic(options.truth, "");
   const std::optional<Extrinsic> reference = readOptionalExtrinsic(options.reference, "--reference");
+  // Read before the bag, as the other files: a typo must not cost the minutes of reading it.
+  std::optional<InitialExtrinsic> initial;
+  if (!params.initial_extrinsic_file.empty()) initial = readInitialExtrinsic(params.initial_extrinsic_file);
 
   ProgressLine progress(stderr, !options.quiet);
   BagPairs read = readPairs(options, params, progress);
   if (options.monitor) {
     return runDriftWatch(options, params, read.camera, *read.builder, *reference, progress);
   }
-  const CalibrationJobOutcome outcome = calibratePairs(options, params, read, truth, reference, progress);
+  const CalibrationJobOutcome outcome = calibratePairs(options, params, read, truth, reference, initial, progress);
   const CalibrationResult& result = *outcome.result;
 
   SummaryInput summary;
@@ -374,6 +382,7 @@ int runCalibrateBag(const CalibrateBagOptions& options) {
   summary.result = result;
   summary.truth = outcome.context.truth;
   summary.quality = outcome.quality;
+  summary.pairing = outcome.pairing;
   summary.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!options.quiet || result.stopped) {
     std::fputs(formatCalibrationSummary(summary).c_str(), stdout);

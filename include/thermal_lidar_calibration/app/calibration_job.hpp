@@ -8,6 +8,7 @@
 
 #include "thermal_lidar_calibration/app/parameters.hpp"
 #include "thermal_lidar_calibration/app/result_file.hpp"
+#include "thermal_lidar_calibration/core/association_refit.hpp"
 #include "thermal_lidar_calibration/core/calibration_pair.hpp"
 #include "thermal_lidar_calibration/core/calibrator.hpp"
 #include "thermal_lidar_calibration/core/camera_model.hpp"
@@ -40,6 +41,13 @@ struct JobTruth {
 struct CalibrationJobRequest {
   CameraModel camera;
   std::vector<CalibrationPair> pairs;  // the kept pairs, in time order
+  // Issue 23: the frames the count rule did not keep, with people in both modalities
+  // (DatasetBuilder::takeCandidates), paired by association after the first fit when
+  // parameters.pairing says so. Empty: the count rule's pairs alone.
+  std::vector<CalibrationPair> candidates;
+  // Where association may start instead of the first fit. Unset: the job reads
+  // parameters.initial_extrinsic_file, if any (a front end may read it first to fail early).
+  std::optional<InitialExtrinsic> initial;
   CoreParameters parameters;           // the fit's and the quality's settings, written to the file
   std::optional<JobReference> reference;
   std::optional<JobTruth> truth;
@@ -76,12 +84,20 @@ struct CalibrationJobOutcome {
   std::vector<std::string> report_files;
   std::string report_error;          // why the report is missing, when one was asked for
   std::size_t pairs = 0;             // pairs the job fitted
+  // Issue 23: the pairs the result indexes (the count rule's and the association's, in time
+  // order), how many each rule gave, and how the association went.
+  std::vector<CalibrationPair> fitted_pairs;
+  PairingSummary pairing;
 };
 
 // Runs the whole job. Never throws for bad pairs or unwritable files: the outcome says what
 // failed (the front ends report it in their own terms).
 CalibrationJobOutcome runCalibrationJob(const CalibrationJobRequest& request,
                                         const JobCallback& callback = {});
+
+// An initial extrinsic from a result YAML (its extrinsic, and its time offset unless it applied
+// none). Throws std::invalid_argument("initial_extrinsic_file: ...") naming what is wrong.
+InitialExtrinsic readInitialExtrinsic(const std::string& path);
 
 // Writes the result file and reads it back; "" when the file holds the result, else why not.
 std::string saveResultFile(const std::string& path, const CalibrationResult& result,

@@ -22,6 +22,7 @@ struct SummaryInput {
   CalibrationResult result;
   std::optional<TruthComparison> truth;
   std::optional<QualityAssessment> quality;  // uncertainty, coverage, verdict, reference
+  std::optional<PairingSummary> pairing;     // pairs by rule (issue 23)
   double total_seconds = 0.0;        // whole tool run
 };
 

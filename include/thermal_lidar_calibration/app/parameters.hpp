@@ -4,6 +4,7 @@
 // config/default.yaml). Their rows: src/app/core_parameter_table.cpp.
 
 #include "thermal_lidar_calibration/app/parameter_table.hpp"
+#include "thermal_lidar_calibration/core/association_refit.hpp"
 #include "thermal_lidar_calibration/core/calibration_config.hpp"
 #include "thermal_lidar_calibration/core/drift_config.hpp"
 #include "thermal_lidar_calibration/core/frame_gate.hpp"
@@ -28,6 +29,9 @@ struct CoreParameters {
   DriftConfig drift;           // the drift watch (issue 9): calibrate_bag --monitor, node monitor
   // Issue 21: the clusters' per-point time field: auto, none or a field name (PointTimeField).
   std::string point_time_field = "auto";
+  // Issue 23: pairing by association after the first fit, and where it may start instead.
+  PairingConfig pairing;
+  std::string initial_extrinsic_file;  // a result YAML; empty: the paper's first fit
 };
 
 const ParameterTable<CoreParameters>& coreParameterTable();

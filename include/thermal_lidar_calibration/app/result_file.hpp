@@ -2,6 +2,7 @@
 // The YAML result file of INTERFACE.md (plus per-pair detail, parameters, seed, run time),
 // and a reader for result / truth files (same keys).
 
+#include "thermal_lidar_calibration/core/association_refit.hpp"
 #include "thermal_lidar_calibration/core/quality_assessment.hpp"
 #include "thermal_lidar_calibration/core/calibrator.hpp"
 #include "thermal_lidar_calibration/app/parameters.hpp"
@@ -24,14 +25,29 @@ struct TruthComparison {
   double truth_loss = 0.0;  // Eq. (3), nearest rule, on the pairs the result used
 };
 
+// How the pairs were made (issue 23): result YAML `pairs_by_rule: {counts: N, association: M}`
+// and an `association:` block.
+struct PairingSummary {
+  PairingMode mode = PairingMode::kCounts;  // as applied (refine none: counts)
+  std::size_t counts = 0;
+  std::size_t association = 0;
+  std::size_t candidates = 0;  // frames association could pair
+  int rounds = 0;
+  bool converged = true;
+  bool initial_used = false;
+  std::string note;
+};
+
 struct ResultContext {
   std::string lidar_frame;
   std::string camera_frame;
   std::string source;                  // bag path or "live"
   std::vector<double> pair_stamps_s;   // one per collected pair, same order as the result
+  std::vector<PairRule> pair_rules;    // the same pairs' rules (issue 23); empty: not written
   CoreParameters parameters;
   std::optional<TruthComparison> truth;  // written as a `truth:` block when set
   std::optional<QualityAssessment> quality;  // uncertainty, coverage, verdict, reference keys
+  std::optional<PairingSummary> pairing;     // pairs_by_rule and association: when set
 };
 
 // Throws std::runtime_error if the file cannot be written (says the path and the reason).
