@@ -59,7 +59,7 @@ TEST_F(CalibrateBagAssociationCli, TheDefaultRunAddsAssociationPairsAndSaysHowMa
   const int counts = y["pairs_by_rule"]["counts"].as<int>();
   const int association = y["pairs_by_rule"]["association"].as<int>();
   EXPECT_GT(counts, 20);
-  EXPECT_GT(association, counts / 2);
+  EXPECT_GE(association, 10);  // frames with a missed person, a false cluster or a false blob
   EXPECT_EQ(counts + association, y["pairs_collected"].as<int>());
   EXPECT_EQ(y["association"]["pairing"].as<std::string>(), "association");
   EXPECT_GE(y["association"]["rounds"].as<int>(), 1);
@@ -93,7 +93,8 @@ TEST_F(CalibrateBagAssociationCli, AWrongInitialExtrinsicIsRefusedAndTheResultSt
   const Eigen::Vector3d r(truth["rotation_vector"][0].as<double>(), truth["rotation_vector"][1].as<double>(),
                           truth["rotation_vector"][2].as<double>());
   const Eigen::Matrix3d turned =
-      Eigen::AngleAxisd(5.0 * M_PI / 180.0, Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(r.norm(), r.normalized());
+      Eigen::AngleAxisd(5.0 * M_PI / 180.0, Eigen::Vector3d::UnitY()).toRotationMatrix() *
+      Eigen::AngleAxisd(r.norm(), r.normalized()).toRotationMatrix();
   const Eigen::AngleAxisd wrong(turned);
   const Eigen::Vector3d rv = wrong.angle() * wrong.axis();
   const std::string start = dir_ + "/start.yaml";
