@@ -59,6 +59,9 @@ std::uint32_t majority(const Map& votes) {
   return best;
 }
 
+constexpr std::int64_t kSlopNs = 60000000;   // sync_slop's default, 0.05 s, and the stamps' rounding
+constexpr std::int64_t kStampNs = 6000000;   // half the result file's stamp resolution, and some
+
 struct Detected {
   std::vector<Eigen::Vector3f> points;
   std::vector<std::int32_t> labels;
@@ -98,8 +101,8 @@ int main(int argc, char** argv) {
     for (const rosbag::MessageInstance& m : rosbag::View(
              bag, rosbag::TopicQuery({"/thermal/camera_info", "/thermal/image_raw", "/truth/thermal_person_ids",
                                       "/lidar/points"}))) {
-      if (m.getTopic() == "/thermal/camera_info" && !have_camera) {
-        camera = tlc::ros_io::cameraModelFromMsg(*m.instantiate<sensor_msgs::CameraInfo>());
+      if (m.getTopic() == "/thermal/camera_info") {
+        if (!have_camera) camera = tlc::ros_io::cameraModelFromMsg(*m.instantiate<sensor_msgs::CameraInfo>());
         have_camera = true;
         continue;
       }
@@ -107,9 +110,15 @@ int main(int argc, char** argv) {
       if (m.getTopic() == "/lidar/points") {
         const auto cloud = m.instantiate<sensor_msgs::PointCloud2>();
         stamp = static_cast<std::int64_t>(cloud->header.stamp.toNSec());
-        if (!wanted.count(stamp)) continue;
+        // The cloud a pair's image was synchronized with: the nearest within the sync slop.
+        const auto near = wanted.lower_bound(stamp - kSlopNs);
+        if (near == wanted.end() || *near > stamp + kSlopNs) continue;
         const tlc::ros_io::DetectedCloud out = adapter.detect(*cloud, m.getTopic());
-        const std::vector<Eigen::Vector3f> points = tlc::ros_io::decodeCloudPoints(*cloud, m.getTopic(), 1u << 30);
+        // Every point of the scan, in its order (the detection's indices count them all).
+        std::vector<Eigen::Vector3f> points;
+        for (sensor_msgs::PointCloud2ConstIterator<float> p(*cloud, "x"); p != p.end(); ++p) {
+          points.emplace_back(p[0], p[1], p[2]);
+        }
         std::vector<std::uint32_t> truth;
         for (sensor_msgs::PointCloud2ConstIterator<std::uint32_t> id(*cloud, "truth_id"); id != id.end(); ++id) {
           truth.push_back(*id);
@@ -125,17 +134,27 @@ int main(int argc, char** argv) {
       } else {
         const auto image = m.instantiate<sensor_msgs::Image>();
         stamp = static_cast<std::int64_t>(image->header.stamp.toNSec());
-        if (!wanted.count(stamp)) continue;
+        // The result file writes stamps to 12 significant digits (10 ms at today's epoch).
+        const auto listed = wanted.lower_bound(stamp - kStampNs);
+        if (listed == wanted.end() || *listed > stamp + kStampNs) continue;
         if (m.getTopic() == "/truth/thermal_person_ids") {
-          truths[stamp] = tlc::ros_io::decodeMonoImage(*image, m.getTopic());
+          truths[stamp] = tlc::ros_io::decodeMonoImage(*image, m.getTopic()).clone();
         } else {
           const tlc::ros_io::SegmentedImage seg = adapter.segment(image, m.getTopic());
           masks[stamp] = tlc::ros_io::decodeMonoImage(*seg.mask, "mask").clone();
         }
       }
-      if (!clouds.count(stamp) || !masks.count(stamp) || !truths.count(stamp) || !have_camera) continue;
-      const Detected& d = clouds[stamp];
-      const cv::Mat regions = tlc::personRegions(masks[stamp]);
+    }
+    for (const auto& [stamp, mask] : masks) {
+      if (!truths.count(stamp) || !have_camera) continue;
+      // The nearest cloud.
+      auto best = clouds.end();
+      for (auto it = clouds.lower_bound(stamp - kSlopNs); it != clouds.end() && it->first <= stamp + kSlopNs; ++it) {
+        if (best == clouds.end() || std::llabs(it->first - stamp) < std::llabs(best->first - stamp)) best = it;
+      }
+      if (best == clouds.end()) continue;
+      const Detected& d = best->second;
+      const cv::Mat regions = tlc::personRegions(mask);
       const cv::Mat& truth = truths[stamp];
       const tlc::FrameAssociation a = tlc::associateClusters(camera, regions, d.points, d.labels, extrinsic, config);
       ++frames;
@@ -163,9 +182,6 @@ int main(int argc, char** argv) {
                       stamp * 1e-9, match.label, who_lidar, match.region, who_camera, match.overlap, match.second);
         }
       }
-      clouds.erase(stamp);
-      masks.erase(stamp);
-      truths.erase(stamp);
     }
     std::printf("association pairs %ld of %zu listed | persons matched %ld: right %ld, wrong %ld (%.2f %%) | "
                 "non-person matched to non-person %ld\n",

@@ -122,3 +122,36 @@ TEST(ResultFile, UnwritablePathIsARuntimeError) {
   EXPECT_THROW(writeResultFile("/nonexistent_dir/result.yaml", sampleResult(), ResultContext{}),
                std::runtime_error);
 }
+
+// Issue 23: how many pairs each rule made, the association block and each pair's rule.
+TEST(ResultFile, SaysWhichRuleMadeEachPair) {
+  const std::string path = tempDir() + "/pairing.yaml";
+  ResultContext ctx;
+  ctx.pair_stamps_s = {10.0, 11.5, 12.25};
+  ctx.pair_rules = {PairRule::kCounts, PairRule::kAssociation, PairRule::kCounts};
+  PairingSummary pairing;
+  pairing.mode = PairingMode::kAssociation;
+  pairing.counts = 2;
+  pairing.association = 1;
+  pairing.candidates = 9;
+  pairing.rounds = 2;
+  pairing.note = "initial extrinsic x.yaml refused: ...";
+  ctx.pairing = pairing;
+  writeResultFile(path, sampleResult(), ctx);
+  const YAML::Node y = YAML::LoadFile(path);
+  EXPECT_EQ(y["pairs_by_rule"]["counts"].as<int>(), 2);
+  EXPECT_EQ(y["pairs_by_rule"]["association"].as<int>(), 1);
+  EXPECT_EQ(y["association"]["pairing"].as<std::string>(), "association");
+  EXPECT_EQ(y["association"]["candidate_frames"].as<int>(), 9);
+  EXPECT_EQ(y["association"]["rounds"].as<int>(), 2);
+  EXPECT_TRUE(y["association"]["converged"].as<bool>());
+  EXPECT_FALSE(y["association"]["initial_extrinsic_used"].as<bool>());
+  EXPECT_EQ(y["association"]["note"].as<std::string>(), pairing.note);
+  EXPECT_EQ(y["pairs"][1]["rule"].as<std::string>(), "association");
+  EXPECT_EQ(y["pairs"][2]["rule"].as<std::string>(), "counts");
+
+  ResultContext plain;  // without a pairing summary (older callers): no such keys
+  writeResultFile(path, sampleResult(), plain);
+  EXPECT_FALSE(YAML::LoadFile(path)["pairs_by_rule"]);
+  EXPECT_FALSE(YAML::LoadFile(path)["pairs"][0]["rule"]);
+}
