@@ -29,8 +29,8 @@ struct PairingConfig {
   PairingMode mode = PairingMode::kAssociation;
   AssociationConfig association;
   // An initial extrinsic is used only when at least this share of the count rule's pairs lie
-  // within threshold_sample_px of it (Eq. 1). At the truth, 35-100 % of the count rule's pairs do
-  // on the synthetic drives (the rest pair different objects); 5 deg or 30 cm off, none.
+  // within threshold_sample_px of it (Eq. 1). At the truth 86 and 100 % of the count rule's pairs
+  // do on two raw MS2-like drives (docs/validation/association.md); 5 deg and 30 cm off, none.
   double min_initial_agreement = 0.3;
   void validate() const;  // throws std::invalid_argument naming the key and range
 };
