@@ -106,8 +106,9 @@ AssociatedCalibration fit(const CalibrationJobRequest& request, const JobCallbac
 
 PairingSummary summarise(const CalibrationJobRequest& request, const AssociatedCalibration& fitted) {
   PairingSummary s;
-  const bool associate = request.parameters.pairing.mode == PairingMode::kAssociation &&
-                         request.parameters.calibration.refine.mode == RefineMode::kLocal;
+  const bool asked = request.parameters.pairing.mode == PairingMode::kAssociation &&
+                     request.parameters.calibration.refine.mode == RefineMode::kLocal;
+  const bool associate = asked && request.candidates_collected;
   s.mode = associate ? PairingMode::kAssociation : PairingMode::kCounts;
   s.counts = fitted.counts_pairs;
   s.association = fitted.association_pairs;
@@ -116,6 +117,10 @@ PairingSummary summarise(const CalibrationJobRequest& request, const AssociatedC
   s.converged = fitted.converged;
   s.initial_used = fitted.initial_used;
   s.note = fitted.note;
+  if (asked && !associate) {
+    s.note += std::string(s.note.empty() ? "" : "; ") +
+              "pairing association not applied: this front end kept no frames for it (the live node pairs by counts)";
+  }
   return s;
 }
 

@@ -294,6 +294,7 @@ CalibrationJobOutcome calibratePairs(const CalibrateBagOptions& options, const C
   CalibrationJobRequest job;
   job.camera = read.camera;
   job.pairs = read.builder->takePairs();
+  job.candidates_collected = read.builder->keepsAssociationCandidates();
   job.candidates = read.builder->takeCandidates();
   job.initial = initial;
   job.parameters = params;

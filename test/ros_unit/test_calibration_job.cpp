@@ -165,3 +165,46 @@ TEST(CalibrationJob, AStopWritesNothingUnlessTheBestSoFarIsWanted) {
   EXPECT_FALSE(late_out.result->stopped);
   EXPECT_FALSE(std::filesystem::exists(late.output_file));
 }
+
+// Issue 23: the job pairs the candidate frames by association after the first fit, and the
+// result (and the pairs it indexes) say which rule made each pair; a front end that kept no
+// candidates (the live node today) is told so rather than shown an association that found none.
+TEST(CalibrationJob, PairsTheCandidatesByAssociationAndSaysWhichRuleMadeEachPair) {
+  const std::string dir = test_support::tempDir("tlc_job_association_");
+  CalibrationJobRequest request = quickRequest(dir);
+  request.report_dir.clear();
+  request.parameters.quality.uncertainty_enabled = false;
+  test_support::SyntheticPairsOptions o;
+  o.pairs = 12;
+  o.seed = 12;
+  for (std::size_t i = 0; i < request.pairs.size(); ++i) request.pairs[i].candidate_index = 10 * i;
+  std::vector<CalibrationPair> candidates = test_support::makeSyntheticPairs(request.camera, fieldsafeTruth(), o);
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    candidates[i].regions = personRegions(candidates[i].mask);
+    candidates[i].mask = cv::Mat();
+    candidates[i].rule = PairRule::kAssociation;
+    candidates[i].candidate_index = 10 * i + 5;
+    candidates[i].stamp_s = 100.5 + static_cast<double>(i);
+  }
+  request.candidates = candidates;
+  request.candidates_collected = true;
+  const CalibrationJobOutcome out = runCalibrationJob(request);
+  ASSERT_TRUE(out.result) << out.error;
+  EXPECT_EQ(out.pairing.mode, PairingMode::kAssociation);
+  EXPECT_EQ(out.pairing.counts, 24u);
+  EXPECT_GE(out.pairing.association, 8u);
+  EXPECT_EQ(out.pairs, out.fitted_pairs.size());
+  EXPECT_EQ(out.result->pairs_collected, out.fitted_pairs.size());
+  ASSERT_EQ(out.context.pair_rules.size(), out.fitted_pairs.size());
+  const YAML::Node y = YAML::LoadFile(request.output_file);
+  EXPECT_EQ(y["pairs_by_rule"]["association"].as<std::size_t>(), out.pairing.association);
+  EXPECT_LT(rotationErrorRad(out.result->extrinsic, fieldsafeTruth()), 0.2 * kDeg);
+
+  request.candidates_collected = false;
+  request.candidates.clear();
+  const CalibrationJobOutcome node = runCalibrationJob(request);
+  ASSERT_TRUE(node.result) << node.error;
+  EXPECT_EQ(node.pairing.mode, PairingMode::kCounts);
+  EXPECT_EQ(node.pairing.association, 0u);
+  EXPECT_NE(node.pairing.note.find("pairing association not applied"), std::string::npos) << node.pairing.note;
+}

@@ -45,6 +45,9 @@ struct CalibrationJobRequest {
   // (DatasetBuilder::takeCandidates), paired by association after the first fit when
   // parameters.pairing says so. Empty: the count rule's pairs alone.
   std::vector<CalibrationPair> candidates;
+  // The front end kept candidates (DatasetBuilder::keepAssociationCandidates): without them the
+  // result says association was not applied, rather than that it found nothing.
+  bool candidates_collected = false;
   // Where association may start instead of the first fit. Unset: the job reads
   // parameters.initial_extrinsic_file, if any (a front end may read it first to fail early).
   std::optional<InitialExtrinsic> initial;

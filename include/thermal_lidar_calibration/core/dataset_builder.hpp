@@ -83,6 +83,7 @@ class DatasetBuilder {
   // by association once an extrinsic is known. Skipped frames stay skipped. Off by default (the
   // paper keeps nothing else).
   void keepAssociationCandidates(bool keep) { keep_candidates_ = keep; }
+  bool keepsAssociationCandidates() const { return keep_candidates_; }
   // The candidates (rule kAssociation, regions set, mask empty), in time order, handed over.
   std::vector<CalibrationPair> takeCandidates();
   const std::vector<CalibrationPair>& candidates() const { return candidates_; }
