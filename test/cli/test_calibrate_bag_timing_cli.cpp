@@ -81,7 +81,9 @@ TEST_F(CalibrateBagTimingCli, TheDefaultRunEstimatesTheOffsetWithTheExtrinsic) {
 }
 
 TEST_F(CalibrateBagTimingCli, IgnoringTheOffsetIsDecimetresOffAndTheVerdictNamesTiming) {
-  const RunResult r = calibrate("none", "time_offset_mode: none\n", "--quiet");
+  // The count rule's pairs alone, as when this was measured: association's extra pairs (issue 23)
+  // take the offset-blind fit to 6 cm on this drive, which is not what this test is about.
+  const RunResult r = calibrate("none", "time_offset_mode: none\npairing: counts\n", "--quiet");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const YAML::Node y = YAML::LoadFile(dir_ + "/none.yaml");
   EXPECT_EQ(y["time_offset_mode"].as<std::string>(), "none");
