@@ -5,6 +5,10 @@
 
 namespace thermal_lidar_calibration {
 
+Eigen::Vector3d deskewVelocity(const PersonMotion& motion) {
+  return Eigen::Vector3d(motion.velocity_mps.x(), motion.velocity_mps.y(), 0.0);
+}
+
 bool hasMeasuredMotion(const CalibrationPair& pair) {
   return !pair.point_velocity.empty() && pair.point_velocity.size() == pair.points.size();
 }
@@ -12,7 +16,7 @@ bool hasMeasuredMotion(const CalibrationPair& pair) {
 void attachMotion(CalibrationPair& pair, std::vector<PersonMotion> motion) {
   std::map<std::int32_t, Eigen::Vector3f> by_label;
   for (const PersonMotion& m : motion) {
-    if (m.measured()) by_label[m.label] = m.velocity_mps.cast<float>();
+    if (m.measured()) by_label[m.label] = deskewVelocity(m).cast<float>();
   }
   pair.point_velocity.assign(pair.points.size(), Eigen::Vector3f::Zero());
   for (std::size_t i = 0; i < pair.points.size() && i < pair.labels.size(); ++i) {

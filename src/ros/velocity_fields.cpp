@@ -1,6 +1,7 @@
 #include "thermal_lidar_calibration/ros/velocity_fields.hpp"
 
 #include "cloud_fields.hpp"
+#include "thermal_lidar_calibration/core/person_timing.hpp"
 
 #include <cmath>
 #include <cstring>
@@ -14,7 +15,7 @@ sensor_msgs::PointCloud2 withVelocityFields(const sensor_msgs::PointCloud2& clus
   const cloud_fields::CloudLayout layout = cloud_fields::checkCloudLayout(clusters, topic, /*need_label=*/true);
   std::map<std::int32_t, Eigen::Vector3f> by_label;
   for (const PersonMotion& m : motion) {
-    if (m.measured()) by_label[m.label] = m.velocity_mps.cast<float>();
+    if (m.measured()) by_label[m.label] = deskewVelocity(m).cast<float>();
   }
   // The same points, dense, with the old fields (less any old velocity) followed by vx, vy, vz.
   sensor_msgs::PointCloud2 out;

@@ -5,6 +5,8 @@
 #include "thermal_lidar_calibration/core/calibrator.hpp"
 #include "thermal_lidar_calibration/core/person_timing.hpp"
 #include "thermal_lidar_calibration/core/timed_refinement.hpp"
+#include "thermal_lidar_calibration/core/timing_resolution.hpp"
+#include "thermal_lidar_calibration/core/random.hpp"
 
 #include "../support/moving_pairs.hpp"
 
@@ -72,6 +74,43 @@ TEST(PersonTiming, PointsMoveWithTheirPersonToTheImagesInstant) {
   CalibrationPair plain = pair;
   plain.point_velocity.clear();
   EXPECT_EQ(pointsAtImageTime(plain, 0.05), plain.points);
+}
+
+TEST(PersonTiming, PointsMoveAlongTheGroundOnly) {
+  // The centroid's vertical rate is the rings' doing (deskewVelocity): a person's points move
+  // with the horizontal part of the fit, in the pair and in the dataset's velocity fields alike.
+  CalibrationPair pair;
+  pair.stamp_s = pair.cloud_stamp_s = 10.0;
+  pair.points = {{12, 1, -0.5f}, {12, 1, 0.5f}};
+  pair.labels = {1, 1};
+  PersonMotion person;
+  person.label = 1;
+  person.velocity_mps = Eigen::Vector3d(-2.0, 0.3, 0.25);
+  person.scans = 5;
+  EXPECT_EQ(deskewVelocity(person), Eigen::Vector3d(-2.0, 0.3, 0.0));
+  attachMotion(pair, {person});
+  for (const Eigen::Vector3f& v : pair.point_velocity) EXPECT_EQ(v, Eigen::Vector3f(-2.0f, 0.3f, 0.0f));
+  const auto moved = pointsAtImageTime(pair, 0.06);
+  EXPECT_FLOAT_EQ(moved[0].z(), -0.5f);
+  EXPECT_FLOAT_EQ(moved[1].z(), 0.5f);
+  EXPECT_NEAR(moved[0].x(), 12.0 - 2.0 * 0.06, 1e-5);
+}
+
+TEST(TimeOffset, TheCentroidsVerticalRateDoesNotResolveASteadyDrive) {
+  // Straight at one speed past standing people, with each person's fitted vertical rate as the
+  // rings make it (+-0.2 m/s about a true 0): that rate differs from person to person, no pose
+  // mimics it, and if points moved with it the drive would seem to resolve the offset.
+  auto pairs = movingPairs(0.06, true);
+  Rng rng(5);
+  std::vector<std::size_t> used;
+  for (CalibrationPair& pair : pairs) {
+    for (PersonMotion& m : pair.motion) m.velocity_mps.z() = rng.uniform(-0.2, 0.2);
+    attachMotion(pair, pair.motion);
+    used.push_back(used.size());
+  }
+  const TimingResolution r = timingResolution(fieldsafeCamera(), pairs, used, fieldsafeTruth(), 0.0);
+  EXPECT_EQ(r.pairs_with_motion, pairs.size());
+  EXPECT_GT(r.resolution_ms, 100.0);
 }
 
 TEST(TimeOffset, TheEvaluatorAtAnOffsetEqualsTheMovedPoints) {

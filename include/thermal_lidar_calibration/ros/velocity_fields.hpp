@@ -1,7 +1,7 @@
 #pragma once
 // The people's measured motion kept with their clusters (issue 21): a kept pair's clusters in the
 // dataset bag carry three float32 fields vx, vy, vz per point, its person's velocity relative to
-// the LiDAR (m/s; 0 where not measured), so that a resumed node, or calibrate_bag on the dataset
+// the LiDAR as the points are moved with it (deskewVelocity: vz is 0; m/s; 0 where not measured), so that a resumed node, or calibrate_bag on the dataset
 // bag, can estimate the camera's time offset without the scans between kept frames, which the
 // dataset bag does not hold. decodeClusters reads them back.
 
