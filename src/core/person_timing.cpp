@@ -9,6 +9,10 @@ Eigen::Vector3d deskewVelocity(const PersonMotion& motion) {
   return Eigen::Vector3d(motion.velocity_mps.x(), motion.velocity_mps.y(), 0.0);
 }
 
+Eigen::Vector3d deskewVelocityStdError(const PersonMotion& motion) {
+  return Eigen::Vector3d(motion.std_error_mps.x(), motion.std_error_mps.y(), 0.0);
+}
+
 bool hasMeasuredMotion(const CalibrationPair& pair) {
   return !pair.point_velocity.empty() && pair.point_velocity.size() == pair.points.size();
 }

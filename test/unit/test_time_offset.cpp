@@ -113,6 +113,33 @@ TEST(TimeOffset, TheCentroidsVerticalRateDoesNotResolveASteadyDrive) {
   EXPECT_GT(r.resolution_ms, 100.0);
 }
 
+TEST(TimeOffset, TheVelocitiesOwnErrorsDoNotResolveASteadyDrive) {
+  // The same steady drive, each person's velocity off by up to 30 cm/s horizontally (a walker's
+  // swinging arms, a cluster merged for a scan), with the standard error the fit reports for it.
+  const auto resolutionOf = [](std::vector<CalibrationPair> pairs, double std_error_mps, double noise_mps) {
+    Rng rng(6);
+    std::vector<std::size_t> used;
+    for (CalibrationPair& pair : pairs) {
+      for (PersonMotion& m : pair.motion) {
+        m.velocity_mps += Eigen::Vector3d(rng.uniform(-noise_mps, noise_mps), rng.uniform(-noise_mps, noise_mps), 0.0);
+        m.std_error_mps.setConstant(std_error_mps);
+      }
+      attachMotion(pair, pair.motion);
+      used.push_back(used.size());
+    }
+    return timingResolution(fieldsafeCamera(), pairs, used, fieldsafeTruth(), 0.0).resolution_ms;
+  };
+  const auto steady = movingPairs(0.06, true);
+  EXPECT_LT(resolutionOf(steady, 0.0, 0.3), 15.0) << "the errors alone seem to resolve it";
+  EXPECT_GT(resolutionOf(steady, 0.2, 0.3), 100.0);
+  // A drive with stops, turns and walkers resolves it as before: its people's motions differ
+  // by far more than their errors.
+  const auto varied = movingPairs(0.06);
+  const double known = resolutionOf(varied, 0.0, 0.0);
+  EXPECT_LT(known, 5.0);
+  EXPECT_NEAR(resolutionOf(varied, 0.2, 0.0), known, 0.1 * known);
+}
+
 TEST(TimeOffset, TheEvaluatorAtAnOffsetEqualsTheMovedPoints) {
   const auto pairs = movingPairs(0.06, false, 8);
   const LossEvaluator moving(fieldsafeCamera(), pairs, LossConfig{5.0, PixelRule::kBilinear, 0.0});

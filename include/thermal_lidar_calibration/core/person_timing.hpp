@@ -23,6 +23,8 @@ namespace thermal_lidar_calibration {
 // fit turned into centimetres of camera height. People walk on the ground and the vehicle drives
 // on it, so what the camera sees change between the scan and the image is the horizontal part.
 Eigen::Vector3d deskewVelocity(const PersonMotion& motion);
+// Its standard error per axis (0 along z, which deskewVelocity does not use).
+Eigen::Vector3d deskewVelocityStdError(const PersonMotion& motion);
 
 // The pair carries one velocity per point (some may be zero: people not measured).
 bool hasMeasuredMotion(const CalibrationPair& pair);

@@ -6,7 +6,10 @@
 // pose block in the linearised 7x7 normal matrix of the points' image positions (each pair
 // weighing one: its points share one mask and one scan), against a residual of a pixel, is
 // delta's 1-sigma given the pose. Straight driving at one speed past standing people moves
-// every point alike, a translation mimics it all, and the resolution is unbounded. ROS-free.
+// every point alike, a translation mimics it all, and the resolution is unbounded. The measured
+// velocities' errors (PersonMotion::std_error_mps, where the pairs carry it) also make people
+// move differently, which no pose mimics either: their expected share of the information is
+// taken off, so a drive resolves delta by what the people truly do. ROS-free.
 
 #include "thermal_lidar_calibration/core/calibration_pair.hpp"
 #include "thermal_lidar_calibration/core/camera_model.hpp"
