@@ -76,33 +76,64 @@ Eigen::Vector3d predict(const Track& track, double t, const Eigen::Vector3d& com
   return track.c[0] + common_shift * scale;
 }
 
-// The shift most people of `from` show in `to`: the median of each one's nearest neighbour
-// within the gate (standing people all move by the vehicle's own motion; walkers deviate by a
-// few centimetres per scan). Zero when nobody has a neighbour.
-Eigen::Vector3d commonShift(const ScanPeople& from, const ScanPeople& to, double gate_m) {
-  std::vector<double> dx, dy, dz;
-  for (const auto& p : from.people) {
-    double best = gate_m;
-    const ScanPeople::Person* nearest = nullptr;
-    for (const auto& q : to.people) {
-      const double d = (q.centroid - p.centroid).norm();
-      if (d < best) {
+// The shift most people of `from` show in `to`, `dt` after it: standing people all move by the
+// vehicle's own motion, walkers deviate by a few centimetres per scan. Every displacement from a
+// person of `from` to one of `to` within `gate_m` is a candidate. It scores one for each person
+// of `from` it takes onto someone in `to` (within kTrackedGateM), and one for each it takes,
+// scaled to `mirror` (the nearest scan on the other side, `mirror_dt` after `from`), onto someone
+// there: when a person is missing from `to`, the displacement onto a neighbour explains as many
+// people of `to` as the true shift does, but not those of the other side. The best candidate's
+// supporters' mean displacement is the shift (fewer summed misfits break a tie); zero when
+// nobody has a candidate.
+Eigen::Vector3d commonShift(const ScanPeople& from, const ScanPeople& to, double dt, const ScanPeople* mirror,
+                            double mirror_dt, double gate_m) {
+  const auto nearest = [](const ScanPeople& scan, const Eigen::Vector3d& at, const ScanPeople::Person** found) {
+    double best = kTrackedGateM;
+    *found = nullptr;
+    for (const auto& q : scan.people) {
+      const double d = (q.centroid - at).norm();
+      if (d <= best) {
         best = d;
-        nearest = &q;
+        *found = &q;
       }
     }
-    if (!nearest) continue;
-    const Eigen::Vector3d s = nearest->centroid - p.centroid;
-    dx.push_back(s.x());
-    dy.push_back(s.y());
-    dz.push_back(s.z());
-  }
-  if (dx.empty()) return Eigen::Vector3d::Zero();
-  const auto median = [](std::vector<double>& v) {
-    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-    return v[v.size() / 2];
+    return best;
   };
-  return Eigen::Vector3d(median(dx), median(dy), median(dz));
+  int best_score = 0;
+  double best_misfit = 0.0;
+  Eigen::Vector3d best_shift = Eigen::Vector3d::Zero();
+  for (const auto& p : from.people) {
+    for (const auto& q : to.people) {
+      const Eigen::Vector3d candidate = q.centroid - p.centroid;
+      if (candidate.norm() > gate_m) continue;
+      int in_to = 0;
+      double misfit = 0.0;
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      for (const auto& r : from.people) {
+        const ScanPeople::Person* hit = nullptr;
+        const double d = nearest(to, r.centroid + candidate, &hit);
+        if (!hit) continue;
+        ++in_to;
+        misfit += d;
+        sum += hit->centroid - r.centroid;
+      }
+      int score = in_to;
+      if (mirror && dt != 0.0) {
+        const Eigen::Vector3d scaled = candidate * (mirror_dt / dt);
+        for (const auto& r : from.people) {
+          const ScanPeople::Person* hit = nullptr;
+          nearest(*mirror, r.centroid + scaled, &hit);
+          if (hit) ++score;
+        }
+      }
+      if (in_to > 0 && (score > best_score || (score == best_score && misfit < best_misfit))) {
+        best_score = score;
+        best_misfit = misfit;
+        best_shift = sum / static_cast<double>(in_to);
+      }
+    }
+  }
+  return best_shift;
 }
 
 }  // namespace
@@ -171,6 +202,13 @@ std::vector<PersonMotion> estimateMotion(const std::vector<ScanPeople>& scans, s
       track.misses = 0;
       track.found = 0;
     }
+    // The nearest scan on the other side checks the common shift on this one (commonShift).
+    const long other = static_cast<long>(centre) - dir;
+    const ScanPeople* mirror = nullptr;
+    if (other >= 0 && other < static_cast<long>(scans.size()) &&
+        std::abs(scans[static_cast<std::size_t>(other)].stamp_s - own.stamp_s) <= config.max_gap_s) {
+      mirror = &scans[static_cast<std::size_t>(other)];
+    }
     double last_stamp = own.stamp_s;
     for (int step = 1;; ++step) {
       const long j = static_cast<long>(centre) + dir * step;
@@ -180,7 +218,8 @@ std::vector<PersonMotion> estimateMotion(const std::vector<ScanPeople>& scans, s
       last_stamp = scan.stamp_s;
       const double dt = scan.stamp_s - own.stamp_s;
       const Eigen::Vector3d shift =
-          commonShift(own, scan, config.max_speed_mps * std::abs(dt) + kTrackedGateM);
+          commonShift(own, scan, dt, mirror, mirror ? mirror->stamp_s - own.stamp_s : 0.0,
+                      config.max_speed_mps * std::abs(dt) + kTrackedGateM);
 
       // Every (active person, candidate) within its gate, nearest first, assigned one to one.
       struct Option {
