@@ -47,7 +47,7 @@ std::optional<std::uint64_t> FaultThrottle::admit(const std::string& fault, Cloc
 std::string FaultThrottle::heldBackText(std::uint64_t held_back) const {
   if (held_back == 0) return "";
   char text[96];
-  std::snprintf(text, sizeof(text), " (and %llu more like it in the last %.0f s)",
+  std::snprintf(text, sizeof(text), " (and %llu more like it in the last %g s)",
                 static_cast<unsigned long long>(held_back), periodS());
   return text;
 }

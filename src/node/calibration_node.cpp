@@ -112,6 +112,9 @@ void CalibrationNode::readParameters() {
   for (const auto& kv : describeCoreParameters(params_.core)) s << "\n  " << kv.first << ": " << kv.second;
   for (const auto& kv : describeNodeParameters(params_)) s << "\n  " << kv.first << ": " << kv.second;
   ROS_INFO("effective parameters:%s", s.str().c_str());
+  fault_throttle_ = FaultThrottle(params_.fault_log_period_s);
+  bad_frames_ = BadFrameReporter(params_.fault_log_period_s);
+  guard_ = CallbackGuard(params_.fault_log_period_s);
   // The files written later are checked now: a bad path found when the first pair is kept costs
   // the user the drive so far.
   const std::pair<const char*, const std::string*> files[] = {

@@ -59,6 +59,9 @@ ParameterTable<NodeParameters> makeNodeParameterTable() {
                "~calibrate service refused below this many pairs", "at most pairs_required");
   node.real("progress_log_period_s", &NodeParameters::progress_log_period_s, aboveRange(0, 3600),
             "s", "period of the \"collecting 12/60\" log line");
+  node.real("fault_log_period_s", &NodeParameters::fault_log_period_s, aboveRange(0, 3600), "s",
+            "period of the fault warnings: one line per kind of fault (bad frames, stamps, NaN "
+            "points, silent inputs, failed callbacks) and period, counting those held back");
   node.real("status_rate_hz", &NodeParameters::status_rate_hz, closedRange(0.1, 100), "Hz",
             "~status publish rate");
   node.real("tf_check_wait_s", &NodeParameters::tf_check_wait_s, closedRange(0, 60), "s",

@@ -37,3 +37,15 @@ TEST(FaultThrottle, OneLinePerKindAndPeriodWithTheCountHeldBack) {
   EXPECT_FALSE(throttle.admit("mask 1x1 at 9.5", t0 + milliseconds(5500)));
   EXPECT_EQ(*throttle.admit("mask 1x1 at 11", t0 + milliseconds(10002)), 1u);
 }
+
+// ~fault_log_period_s sets the period: a short one (the bad-message rostest uses one) is said as
+// it is, not rounded to whole seconds.
+TEST(FaultThrottle, AShortPeriodIsSaidAsItIs) {
+  tlc::FaultThrottle throttle(0.5);
+  const Clock::time_point t0 = Clock::now();
+  ASSERT_TRUE(throttle.admit("mask 80x64", t0).has_value());
+  EXPECT_FALSE(throttle.admit("mask 81x64", t0 + milliseconds(499)));
+  const auto next = throttle.admit("mask 82x64", t0 + milliseconds(501));
+  ASSERT_TRUE(next.has_value());
+  EXPECT_EQ(throttle.heldBackText(*next), " (and 1 more like it in the last 0.5 s)");
+}

@@ -63,8 +63,6 @@ class CalibrationNode {
   ~CalibrationNode();
 
  private:
-  // Each distinct bad-frame fault is logged at most once per this period (fault_throttle_).
-  static constexpr double kFaultLogPeriodS = 5.0;
   // A kept pair waits for the scans after it (its people's motion); when none come for this long
   // (a replay ended, the LiDAR stopped) it is finished with the scans there are.
   static constexpr double kScanSilenceS = 1.0;
@@ -201,9 +199,10 @@ class CalibrationNode {
   ros::WallTime start_time_;
   ros::WallTime last_progress_log_;
   std::uint64_t last_logged_considered_ = ~0ull;
-  FaultThrottle fault_throttle_{kFaultLogPeriodS};
-  BadFrameReporter bad_frames_{kFaultLogPeriodS};  // the wording calibrate_bag uses too
-  CallbackGuard guard_{kFaultLogPeriodS};  // no exception from a callback ends the node
+  // One line per kind of fault and ~fault_log_period_s (made again once the parameters are read).
+  FaultThrottle fault_throttle_{params_.fault_log_period_s};
+  BadFrameReporter bad_frames_{params_.fault_log_period_s};  // the wording calibrate_bag uses too
+  CallbackGuard guard_{params_.fault_log_period_s};  // no exception from a callback ends the node
 };
 
 }  // namespace ros_io

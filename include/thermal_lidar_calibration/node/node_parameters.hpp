@@ -36,6 +36,7 @@ struct NodeParameters {
                                      // "" = "<camera_frame>_calibrated"
   int min_pairs_to_calibrate = 20;   // ~calibrate is refused below this, [1, pairs_required]
   double progress_log_period_s = 5.0;  // (0, 3600]
+  double fault_log_period_s = 5.0;     // (0, 3600]: one warning per kind of fault and period
   double status_rate_hz = 2.0;         // [0.1, 100]; ~status also goes out on every change
   double tf_check_wait_s = 2.0;        // [0, 60]: listen to /tf, /tf_static before publishing
   int overlay_max_points = 30000;      // [100, 10000000] points drawn per overlay image
