@@ -10,7 +10,7 @@
 set -euo pipefail
 # shellcheck source=scripts/workspace.sh
 source "$(dirname "${BASH_SOURCE[0]}")/workspace.sh"
-prepare_workspace
+prepare_workspace --bench
 echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores" >&2
 # Five repetitions, reported as mean / median / spread: single runs on a shared machine vary.
 for benchmark in loss_benchmark dataset_append_benchmark detection_benchmark point_time_benchmark; do

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Builds the package in a catkin workspace (default: .ws/ inside the checkout, or $TLC_WS) whose
 # src/ holds a symlink to this repository. Prints the workspace path on the last line.
-# Usage: scripts/build.sh [--tests]     (--tests also builds the gtest/rostest targets)
+# Usage: scripts/build.sh [--tests] [--bench]
+#   --tests  also builds the gtest/rostest targets
+#   --bench  also builds the benchmarks and score_raw_detections (bench/)
 set -euo pipefail
 # shellcheck source=scripts/workspace.sh
 source "$(dirname "${BASH_SOURCE[0]}")/workspace.sh"  # PATH and $repo
@@ -15,7 +17,11 @@ launcher=()
 if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
 cd "$ws"
 catkin_make -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON "${launcher[@]}" -j"$jobs" >&2
-if [ "${1:-}" = "--tests" ]; then
-  catkin_make tests -j"$jobs" >&2
-fi
+for extra in "$@"; do
+  case "$extra" in
+    --tests) catkin_make tests -j"$jobs" >&2 ;;
+    --bench) catkin_make benchmarks -j"$jobs" >&2 ;;
+    *) echo "usage: scripts/build.sh [--tests] [--bench]" >&2; exit 2 ;;
+  esac
+done
 echo "$ws"

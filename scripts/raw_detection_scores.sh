@@ -6,7 +6,7 @@
 set -euo pipefail
 # shellcheck source=scripts/workspace.sh
 source "$(dirname "${BASH_SOURCE[0]}")/workspace.sh"
-prepare_workspace
+prepare_workspace --bench
 noise=clean
 frames=1200
 seeds=()

@@ -2,7 +2,7 @@
 # installs the dependencies, builds the package in its catkin workspace and sources it, leaving
 # the workspace path in $ws, the package's executables in $bin and the checkout in $repo.
 #   prepare_workspace            build the package
-#   prepare_workspace --tests    also build the tests
+#   prepare_workspace --tests    also build the tests (--bench: the benchmarks)
 # and, for the CPU measurements, start_private_roscore and cpu_ticks (below).
 # Debian's ROS tools need Debian's python3, not a pyenv one that may be first on PATH.
 export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
