@@ -1,10 +1,10 @@
 #include "thermal_lidar_calibration/core/drift_update_fit.hpp"
 
-#include "thermal_lidar_calibration/core/drift_window_test.hpp"
+#include "thermal_lidar_calibration/core/drift_window_comparison.hpp"
 #include "thermal_lidar_calibration/core/inlier_selection.hpp"
 #include "thermal_lidar_calibration/core/local_refinement.hpp"
 #include "thermal_lidar_calibration/core/loss.hpp"
-#include "thermal_lidar_calibration/core/signed_rank_test.hpp"
+#include "thermal_lidar_calibration/core/signed_rank_statistic.hpp"
 
 #include <algorithm>
 #include <array>

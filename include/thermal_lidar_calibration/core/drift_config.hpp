@@ -9,7 +9,7 @@ struct DriftConfig {
   int window_pairs = 30;   // monitor_window_pairs: the latest kept pairs a test looks at
   int period_pairs = 3;    // monitor_period_pairs: a test after this many new pairs
   int confirm_windows = 2; // monitor_confirm_windows: consecutive changed tests for ERROR
-  // A window counts as changed when either of two tests says so (drift_window_test.hpp).
+  // A window counts as changed when either of two tests says so (drift_window_comparison.hpp).
   // The held-out test needs three things (measured on 20-minute synthetic drives, clean and
   // noisy: each alone raises false alarms, together none; see the README):
   // monitor_significance: the fit beats the reference on pairs it was not fitted on, with a

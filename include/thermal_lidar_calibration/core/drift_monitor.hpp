@@ -1,7 +1,7 @@
 #pragma once
 // The drift watch (issue #9): kept pairs go in one by one, in time order; every
 // `period_pairs` new pairs the latest `window_pairs` are tested against the extrinsic in use
-// (the reference, drift_window_test.hpp), and the verdict moves OK / WARN / ERROR
+// (the reference, drift_window_comparison.hpp), and the verdict moves OK / WARN / ERROR
 // (drift_state.hpp). Once a change is confirmed the monitor finds where in the window it
 // happened and fits the new extrinsic on the pairs since then (the candidate), refitting it as
 // pairs come in; it is final once it rests on `update_pairs` pairs (then it is kept: a later
@@ -20,7 +20,7 @@
 #include "thermal_lidar_calibration/core/drift_config.hpp"
 #include "thermal_lidar_calibration/core/drift_state.hpp"
 #include "thermal_lidar_calibration/core/drift_update_fit.hpp"
-#include "thermal_lidar_calibration/core/drift_window_test.hpp"
+#include "thermal_lidar_calibration/core/drift_window_comparison.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
 #include "thermal_lidar_calibration/core/image_offset.hpp"
 #include "thermal_lidar_calibration/core/uncertainty.hpp"

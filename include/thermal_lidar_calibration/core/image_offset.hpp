@@ -1,6 +1,6 @@
 #pragma once
 // Where a pair's people sit in the image against an extrinsic: the drift watch's low-noise
-// statistic (drift_window_test.hpp).
+// statistic (drift_window_comparison.hpp).
 //
 // The offset is a pan/tilt of the camera about its own centre, in image pixels (x right, y
 // down), that best aligns the pair's LiDAR points with its mask under Eq. (1). Eq. (1) is the

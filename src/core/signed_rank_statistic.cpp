@@ -1,4 +1,4 @@
-#include "thermal_lidar_calibration/core/signed_rank_test.hpp"
+#include "thermal_lidar_calibration/core/signed_rank_statistic.hpp"
 
 #include <algorithm>
 #include <cmath>

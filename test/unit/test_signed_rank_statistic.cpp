@@ -1,6 +1,6 @@
 // The one-sided Wilcoxon signed-rank test of the drift watch, against p-values worked out by
 // hand from the permutation distribution.
-#include "thermal_lidar_calibration/core/signed_rank_test.hpp"
+#include "thermal_lidar_calibration/core/signed_rank_statistic.hpp"
 
 #include <gtest/gtest.h>
 
