@@ -5,7 +5,7 @@
 #include "thermal_lidar_calibration/detection/lidar_person_detector.hpp"
 #include "thermal_lidar_calibration/detection/thermal_person_segmenter.hpp"
 #include "thermal_lidar_calibration/detection_tool/detection_files.hpp"
-#include "thermal_lidar_calibration/detection_tool/detection_views.hpp"
+#include "thermal_lidar_calibration/detection/detection_views.hpp"
 
 #include <cmath>
 #include <iomanip>

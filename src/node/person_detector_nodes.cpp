@@ -2,7 +2,7 @@
 
 #include "thermal_lidar_calibration/node/person_detector_nodes.hpp"
 
-#include "thermal_lidar_calibration/detection_tool/detection_views.hpp"
+#include "thermal_lidar_calibration/detection/detection_views.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 #include "thermal_lidar_calibration/ros/node_parameter_source.hpp"
 

@@ -1,4 +1,4 @@
-#include "thermal_lidar_calibration/detection_tool/detection_views.hpp"
+#include "thermal_lidar_calibration/detection/detection_views.hpp"
 
 #include <opencv2/imgproc.hpp>
 
