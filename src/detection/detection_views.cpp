@@ -7,7 +7,7 @@
 #include <string>
 
 namespace thermal_lidar_calibration {
-namespace detection_tool {
+namespace detection {
 namespace {
 
 cv::Scalar colourOf(int id) {
@@ -33,7 +33,7 @@ cv::Mat stretchToGrey(const cv::Mat& image) {
 
 }  // namespace
 
-cv::Mat renderMaskOverlay(const cv::Mat& image, const detection::ThermalSegmentation& segmentation) {
+cv::Mat renderMaskOverlay(const cv::Mat& image, const ThermalSegmentation& segmentation) {
   cv::Mat view;
   cv::cvtColor(stretchToGrey(image), view, cv::COLOR_GRAY2BGR);
   for (const auto& person : segmentation.people) {
@@ -49,8 +49,8 @@ cv::Mat renderMaskOverlay(const cv::Mat& image, const detection::ThermalSegmenta
   return view;
 }
 
-cv::Mat renderBirdsEye(const std::vector<Eigen::Vector3f>& points, const detection::LidarDetection& detection,
-                       const detection::LidarPersonDetector& detector, double range_m, double px_per_m) {
+cv::Mat renderBirdsEye(const std::vector<Eigen::Vector3f>& points, const LidarDetection& detection,
+                       const LidarPersonDetector& detector, double range_m, double px_per_m) {
   const int side = static_cast<int>(std::ceil(2 * range_m * px_per_m));
   cv::Mat view(side, side, CV_8UC3, cv::Scalar(0, 0, 0));
   const auto& levelled = detector.ground().levelledPoints();
@@ -86,5 +86,5 @@ cv::Mat renderBirdsEye(const std::vector<Eigen::Vector3f>& points, const detecti
   return view;
 }
 
-}  // namespace detection_tool
+}  // namespace detection
 }  // namespace thermal_lidar_calibration

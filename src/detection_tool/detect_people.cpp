@@ -24,7 +24,7 @@ void segmentImage(const DetectPeopleOptions& o, const DetectionParameters& param
   const cv::Mat image = detection::flipImage(readThermalImage(o.image), o.flip);
   const detection::ThermalSegmentation result = segmenter.segment(image);
   writeMask(o.mask_out, result.mask);
-  if (!o.overlay_out.empty()) writeImage(o.overlay_out, renderMaskOverlay(image, result));
+  if (!o.overlay_out.empty()) writeImage(o.overlay_out, detection::renderMaskOverlay(image, result));
   for (const auto& p : result.people) {
     out << "person " << p.id << " bbox " << p.bbox.x << ' ' << p.bbox.y << ' ' << p.bbox.width << ' '
         << p.bbox.height << " area " << p.area_px << '\n';
@@ -57,7 +57,7 @@ void detectInCloud(const DetectPeopleOptions& o, const DetectionParameters& para
   const detection::LidarDetection result = detector.detect(cloud.points);
   writeLabelledCloud(o.clusters_out, result.points, result.labels);
   if (!o.view_out.empty()) {
-    writeImage(o.view_out, renderBirdsEye(cloud.points, result, detector, params.lidar.person.max_range_m));
+    writeImage(o.view_out, detection::renderBirdsEye(cloud.points, result, detector, params.lidar.person.max_range_m));
   }
   out << std::fixed << std::setprecision(3);
   for (const auto& p : result.people) {

@@ -50,7 +50,7 @@ void ThermalPersonSegmenterNode::onImage(const sensor_msgs::Image::ConstPtr& ima
     if (debug_pub_.getNumSubscribers() > 0) {  // drawn only while someone looks
       const cv::Mat pixels = decodeMonoImage(*seg.image, image_topic_);
       debug_pub_.publish(cv_bridge::CvImage(image->header, "bgr8",
-                                            detection_tool::renderMaskOverlay(pixels, seg.segmentation))
+                                            detection::renderMaskOverlay(pixels, seg.segmentation))
                              .toImageMsg());
     }
   } catch (const std::exception& e) {

@@ -10,17 +10,17 @@
 #include <vector>
 
 namespace thermal_lidar_calibration {
-namespace detection_tool {
+namespace detection {
 
 // BGR: the image stretched between its 1st and 99th percentiles, each person tinted in its
 // colour with its box and id.
-cv::Mat renderMaskOverlay(const cv::Mat& image, const detection::ThermalSegmentation& segmentation);
+cv::Mat renderMaskOverlay(const cv::Mat& image, const ThermalSegmentation& segmentation);
 
 // BGR top view (x forward = up, y left = left), `range_m` around the sensor at `px_per_m`: all
 // points grey by height above the local ground, people in their colours with their labels,
 // rejected person-high objects outlined in dark red.
-cv::Mat renderBirdsEye(const std::vector<Eigen::Vector3f>& points, const detection::LidarDetection& detection,
-                       const detection::LidarPersonDetector& detector, double range_m, double px_per_m = 20.0);
+cv::Mat renderBirdsEye(const std::vector<Eigen::Vector3f>& points, const LidarDetection& detection,
+                       const LidarPersonDetector& detector, double range_m, double px_per_m = 20.0);
 
-}  // namespace detection_tool
+}  // namespace detection
 }  // namespace thermal_lidar_calibration
