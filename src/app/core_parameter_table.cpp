@@ -10,7 +10,7 @@
 //      parameter table from the rows (test_parameter_docs fails until they agree).
 // A new config struct gets one group line (`auto x = t.group<XConfig>(...)`) and, if it has
 // rules across keys, a validate() called from loadCoreParameters(). Keys of one part only (the
-// node's) go in that part's own table with the same machinery (src/node/node_parameter_table.cpp).
+// node's) go in that part's own table with the same machinery (src/app/node_parameter_table.cpp).
 
 #include "thermal_lidar_calibration/app/parameters.hpp"
 

@@ -1,9 +1,9 @@
 // calibration_node's own keys (calibrate_bag ignores them). Adding one: a field in
-// NodeParameters (node/node_parameters.hpp) and one row below; then
+// NodeParameters (app/node_parameters.hpp) and one row below; then
 // scripts/update_parameter_docs.sh (see src/app/core_parameter_table.cpp for the row forms).
 // Rules across keys go in loadNodeParameters().
 
-#include "thermal_lidar_calibration/node/node_parameters.hpp"
+#include "thermal_lidar_calibration/app/node_parameters.hpp"
 
 #include <stdexcept>
 

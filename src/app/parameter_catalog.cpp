@@ -1,8 +1,8 @@
-#include "thermal_lidar_calibration/node/parameter_catalog.hpp"
+#include "thermal_lidar_calibration/app/parameter_catalog.hpp"
 
 #include "thermal_lidar_calibration/app/detection_parameters.hpp"
 #include "thermal_lidar_calibration/app/parameters.hpp"
-#include "thermal_lidar_calibration/node/node_parameters.hpp"
+#include "thermal_lidar_calibration/app/node_parameters.hpp"
 
 namespace thermal_lidar_calibration {
 

@@ -18,7 +18,7 @@ const char* const kYamlHeader =
     "# Units: metres, radians, seconds, pixels. Ranges are checked at start: a bad value stops the\n"
     "# node / tool with \"parameter 'key' = value: must be ...\".\n"
     "# Generated from the parameter tables (src/app/core_parameter_table.cpp,\n"
-    "# src/node/node_parameter_table.cpp) by scripts/update_parameter_docs.sh: edit a row there,\n"
+    "# src/app/node_parameter_table.cpp) by scripts/update_parameter_docs.sh: edit a row there,\n"
     "# not this file (test_parameter_docs fails while they disagree).\n";
 
 std::pair<std::size_t, std::size_t> blockBounds(const std::string& text, const std::string& begin,

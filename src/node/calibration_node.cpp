@@ -8,7 +8,7 @@
 #include "thermal_lidar_calibration/app/result_file.hpp"
 #include "thermal_lidar_calibration/app/unknown_parameters.hpp"
 #include "thermal_lidar_calibration/app/writable_path.hpp"
-#include "thermal_lidar_calibration/node/parameter_catalog.hpp"
+#include "thermal_lidar_calibration/app/parameter_catalog.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 #include "thermal_lidar_calibration/ros/node_parameter_source.hpp"
 

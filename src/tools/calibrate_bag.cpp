@@ -15,7 +15,7 @@
 #include "thermal_lidar_calibration/app/quality_output.hpp"
 #include "thermal_lidar_calibration/app/result_file.hpp"
 #include "thermal_lidar_calibration/app/unknown_parameters.hpp"
-#include "thermal_lidar_calibration/node/parameter_catalog.hpp"
+#include "thermal_lidar_calibration/app/parameter_catalog.hpp"
 
 #include <opencv2/imgcodecs.hpp>
 

@@ -3,9 +3,9 @@
 #include "thermal_lidar_calibration/app/detection_parameters.hpp"
 #include "thermal_lidar_calibration/app/parameters.hpp"
 #include "thermal_lidar_calibration/app/point_time_field.hpp"
-#include "thermal_lidar_calibration/node/node_parameters.hpp"
+#include "thermal_lidar_calibration/app/node_parameters.hpp"
 #include "thermal_lidar_calibration/app/unknown_parameters.hpp"
-#include "thermal_lidar_calibration/node/parameter_catalog.hpp"
+#include "thermal_lidar_calibration/app/parameter_catalog.hpp"
 
 #include "../support/test_files.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 // calibration_node's parameters: the core keys shared with calibrate_bag plus the node-only
-// keys (their rows: src/node/node_parameter_table.cpp, same machinery as the core table).
+// keys (their rows: src/app/node_parameter_table.cpp, same machinery as the core table).
 // ROS-free: the node reads them through a ParameterSource over its private NodeHandle.
 
 #include "thermal_lidar_calibration/app/parameters.hpp"

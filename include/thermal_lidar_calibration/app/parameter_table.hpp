@@ -1,6 +1,6 @@
 #pragma once
 // The descriptor machinery behind every parameter table: the core keys
-// (src/app/core_parameter_table.cpp), the node-only keys (src/node/node_parameter_table.cpp) and
+// (src/app/core_parameter_table.cpp), the node-only keys (src/app/node_parameter_table.cpp) and
 // any table a part adds later. A table is a list of rows; a row knows its key, the struct field
 // it fills, its type and allowed range, unit, documentation and section. From the rows come
 //   - loading from any ParameterSource (a YAML file, a NodeHandle), leaving absent keys at the

@@ -19,7 +19,7 @@
 #include "thermal_lidar_calibration/node/dataset_recorder.hpp"
 #include "thermal_lidar_calibration/node/node_diagnostics.hpp"
 #include "thermal_lidar_calibration/ros/frame_synchronizer.hpp"
-#include "thermal_lidar_calibration/node/node_parameters.hpp"
+#include "thermal_lidar_calibration/app/node_parameters.hpp"
 #include "thermal_lidar_calibration/node/overlay_publisher.hpp"
 
 #include <thermal_lidar_calibration/CalibrationStatus.h>
