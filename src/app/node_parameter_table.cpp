@@ -8,7 +8,6 @@
 #include <stdexcept>
 
 namespace thermal_lidar_calibration {
-namespace ros_io {
 namespace {
 
 ParameterTable<NodeParameters> makeNodeParameterTable() {
@@ -106,5 +105,4 @@ std::vector<std::pair<std::string, std::string>> describeNodeParameters(const No
   return nodeParameterTable().describe(p);
 }
 
-}  // namespace ros_io
 }  // namespace thermal_lidar_calibration

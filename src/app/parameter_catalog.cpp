@@ -9,7 +9,7 @@ namespace thermal_lidar_calibration {
 std::vector<ParameterDoc> allParameterDocs() {
   std::vector<ParameterDoc> docs = coreParameterTable().docs();
   for (auto& doc : detectionParameterTable().docs()) docs.push_back(std::move(doc));
-  for (auto& doc : ros_io::nodeParameterTable().docs()) docs.push_back(std::move(doc));
+  for (auto& doc : nodeParameterTable().docs()) docs.push_back(std::move(doc));
   return docs;
 }
 

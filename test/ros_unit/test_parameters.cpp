@@ -18,7 +18,6 @@
 
 namespace tlc = thermal_lidar_calibration;
 using namespace tlc;
-using namespace tlc::ros_io;
 
 namespace {
 

@@ -10,7 +10,6 @@
 #include <vector>
 
 namespace thermal_lidar_calibration {
-namespace ros_io {
 
 // ~mode: collect pairs and optimize, or watch the extrinsic in use for drift (issue 9).
 enum class NodeMode { kCalibrate, kMonitor };
@@ -51,5 +50,4 @@ NodeParameters loadNodeParameters(const ParameterSource& source);
 // "key: value" for every node-only key (the core keys come from describeCoreParameters).
 std::vector<std::pair<std::string, std::string>> describeNodeParameters(const NodeParameters& p);
 
-}  // namespace ros_io
 }  // namespace thermal_lidar_calibration
