@@ -10,11 +10,11 @@
 // Points stay where they were captured (the drives measured have no camera time offset).
 // Usage: score_association RAW.bag --result RESULT.yaml [--config PARAMS.yaml]
 
-#include "thermal_lidar_calibration/app/detection_parameters.hpp"
-#include "thermal_lidar_calibration/app/parameter_source.hpp"
-#include "thermal_lidar_calibration/app/parameters.hpp"
-#include "thermal_lidar_calibration/app/result_file.hpp"
-#include "thermal_lidar_calibration/app/yaml_file.hpp"
+#include "thermal_lidar_calibration/app/parameters/detection_parameters.hpp"
+#include "thermal_lidar_calibration/app/parameters/parameter_source.hpp"
+#include "thermal_lidar_calibration/app/parameters/core_parameters.hpp"
+#include "thermal_lidar_calibration/app/files/result_file.hpp"
+#include "thermal_lidar_calibration/app/files/yaml_file.hpp"
 #include "thermal_lidar_calibration/core/person_association.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 #include "thermal_lidar_calibration/ros/person_detection_adapter.hpp"

@@ -20,8 +20,8 @@
 
 #include "detection_explain.hpp"
 
-#include "thermal_lidar_calibration/app/detection_parameters.hpp"
-#include "thermal_lidar_calibration/app/parameter_source.hpp"
+#include "thermal_lidar_calibration/app/parameters/detection_parameters.hpp"
+#include "thermal_lidar_calibration/app/parameters/parameter_source.hpp"
 #include "thermal_lidar_calibration/detection/detection_scoring.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 #include "thermal_lidar_calibration/ros/person_detection_adapter.hpp"

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Rewrites config/default.yaml and the parameter reference (docs/parameters.md) from the
-# parameter tables (src/app/core_parameter_table.cpp, src/app/node_parameter_table.cpp, ...).
+# parameter tables (src/app/parameters/core_parameter_table.cpp, src/app/parameters/node_parameter_table.cpp, ...).
 # Run it after adding or changing a row; test_parameter_docs fails until the files agree with
 # the tables.
 set -euo pipefail

@@ -8,7 +8,7 @@ namespace detection {
 using checks::Bound;
 using checks::requireRange;
 
-// Per-key ranges as in the parameter table (src/app/detection_parameter_table.cpp), then the
+// Per-key ranges as in the parameter table (src/app/parameters/detection_parameter_table.cpp), then the
 // rules across keys.
 void LidarGroundConfig::validate() const {
   requireRange("lidar_max_tilt_deg", max_tilt_deg, 0.0, 60.0);

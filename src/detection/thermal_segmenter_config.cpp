@@ -10,7 +10,7 @@ namespace detection {
 using checks::Bound;
 using checks::requireRange;
 
-// Per-key ranges as in the parameter table (src/app/detection_parameter_table.cpp), then the
+// Per-key ranges as in the parameter table (src/app/parameters/detection_parameter_table.cpp), then the
 // rules across keys.
 void ThermalSegmenterConfig::validate() const {
   requireRange("kelvin_per_count", kelvin_per_count, 0.0, 10.0);

@@ -1,7 +1,7 @@
 #include "thermal_lidar_calibration/detection_tool/detect_people.hpp"
 
-#include "thermal_lidar_calibration/app/detection_parameters.hpp"
-#include "thermal_lidar_calibration/app/parameter_source.hpp"
+#include "thermal_lidar_calibration/app/parameters/detection_parameters.hpp"
+#include "thermal_lidar_calibration/app/parameters/parameter_source.hpp"
 #include "thermal_lidar_calibration/detection/lidar_person_detector.hpp"
 #include "thermal_lidar_calibration/detection/thermal_person_segmenter.hpp"
 #include "thermal_lidar_calibration/detection_tool/detection_files.hpp"

@@ -2,13 +2,13 @@
 
 #include "thermal_lidar_calibration/node/calibration_node.hpp"
 
-#include "thermal_lidar_calibration/app/timing_text.hpp"
+#include "thermal_lidar_calibration/app/report/timing_text.hpp"
 
-#include "thermal_lidar_calibration/app/camera_info_file.hpp"
-#include "thermal_lidar_calibration/app/result_file.hpp"
-#include "thermal_lidar_calibration/app/unknown_parameters.hpp"
-#include "thermal_lidar_calibration/app/writable_path.hpp"
-#include "thermal_lidar_calibration/app/parameter_catalog.hpp"
+#include "thermal_lidar_calibration/app/files/camera_info_file.hpp"
+#include "thermal_lidar_calibration/app/files/result_file.hpp"
+#include "thermal_lidar_calibration/app/parameters/unknown_parameters.hpp"
+#include "thermal_lidar_calibration/app/files/writable_path.hpp"
+#include "thermal_lidar_calibration/app/parameters/parameter_catalog.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 #include "thermal_lidar_calibration/ros/node_parameter_source.hpp"
 

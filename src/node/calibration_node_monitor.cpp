@@ -6,8 +6,8 @@
 
 #include "thermal_lidar_calibration/node/calibration_node.hpp"
 
-#include "thermal_lidar_calibration/app/quality_output.hpp"
-#include "thermal_lidar_calibration/app/static_transform_command.hpp"
+#include "thermal_lidar_calibration/app/report/quality_output.hpp"
+#include "thermal_lidar_calibration/app/report/static_transform_command.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 
 #include <diagnostic_msgs/DiagnosticStatus.h>

@@ -3,8 +3,8 @@
 
 #include "thermal_lidar_calibration/node/calibration_node.hpp"
 
-#include "thermal_lidar_calibration/app/static_transform_command.hpp"
-#include "thermal_lidar_calibration/app/timing_text.hpp"
+#include "thermal_lidar_calibration/app/report/static_transform_command.hpp"
+#include "thermal_lidar_calibration/app/report/timing_text.hpp"
 
 namespace thermal_lidar_calibration {
 namespace ros_io {

@@ -2,7 +2,7 @@
 
 #include "thermal_lidar_calibration/node/calibration_node.hpp"
 
-#include "thermal_lidar_calibration/app/timing_text.hpp"
+#include "thermal_lidar_calibration/app/report/timing_text.hpp"
 
 #include <cstdio>
 #include <sstream>

@@ -2,7 +2,7 @@
 
 #include "thermal_lidar_calibration/ros/bag_ingest.hpp"
 
-#include "thermal_lidar_calibration/app/bad_frame_reporter.hpp"
+#include "thermal_lidar_calibration/app/runtime/bad_frame_reporter.hpp"
 
 #include "thermal_lidar_calibration/ros/frame_synchronizer.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"

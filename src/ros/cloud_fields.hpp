@@ -4,7 +4,7 @@
 // declared points, no overflow) before any point is read. Failures throw std::invalid_argument
 // with one line naming the topic, what was wrong and what to do.
 
-#include "thermal_lidar_calibration/app/point_time_field.hpp"
+#include "thermal_lidar_calibration/app/parameters/point_time_field.hpp"
 
 #include <sensor_msgs/PointCloud2.h>
 

@@ -2,7 +2,7 @@
 // naming the topic, what was wrong and what to do. (The encoders live in msg_encoding.cpp.)
 
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
-#include "thermal_lidar_calibration/app/camera_calibration.hpp"
+#include "thermal_lidar_calibration/app/files/camera_calibration.hpp"
 
 #include "cloud_fields.hpp"
 

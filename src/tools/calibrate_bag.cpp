@@ -5,17 +5,17 @@
 #include "thermal_lidar_calibration/ros/dataset_bag.hpp"
 
 #include "thermal_lidar_calibration/ros/bag_ingest.hpp"
-#include "thermal_lidar_calibration/app/writable_path.hpp"
-#include "thermal_lidar_calibration/app/calibration_job.hpp"
-#include "thermal_lidar_calibration/app/calibration_summary.hpp"
-#include "thermal_lidar_calibration/app/timing_text.hpp"
-#include "thermal_lidar_calibration/app/drift_timeline.hpp"
-#include "thermal_lidar_calibration/app/camera_info_file.hpp"
-#include "thermal_lidar_calibration/app/progress_line.hpp"
-#include "thermal_lidar_calibration/app/quality_output.hpp"
-#include "thermal_lidar_calibration/app/result_file.hpp"
-#include "thermal_lidar_calibration/app/unknown_parameters.hpp"
-#include "thermal_lidar_calibration/app/parameter_catalog.hpp"
+#include "thermal_lidar_calibration/app/files/writable_path.hpp"
+#include "thermal_lidar_calibration/app/runtime/calibration_job.hpp"
+#include "thermal_lidar_calibration/tools/calibration_summary.hpp"
+#include "thermal_lidar_calibration/app/report/timing_text.hpp"
+#include "thermal_lidar_calibration/tools/drift_timeline.hpp"
+#include "thermal_lidar_calibration/app/files/camera_info_file.hpp"
+#include "thermal_lidar_calibration/tools/progress_line.hpp"
+#include "thermal_lidar_calibration/app/report/quality_output.hpp"
+#include "thermal_lidar_calibration/app/files/result_file.hpp"
+#include "thermal_lidar_calibration/app/parameters/unknown_parameters.hpp"
+#include "thermal_lidar_calibration/app/parameters/parameter_catalog.hpp"
 
 #include <opencv2/imgcodecs.hpp>
 

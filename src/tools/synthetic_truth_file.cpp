@@ -1,6 +1,6 @@
 #include "thermal_lidar_calibration/tools/synthetic_truth_file.hpp"
 
-#include "thermal_lidar_calibration/app/result_file.hpp"
+#include "thermal_lidar_calibration/app/files/result_file.hpp"
 
 #include <yaml-cpp/yaml.h>
 

@@ -6,7 +6,7 @@
 #include "../support/test_files.hpp"
 
 #include "thermal_lidar_calibration/ros/dataset_bag.hpp"
-#include "thermal_lidar_calibration/app/result_file.hpp"
+#include "thermal_lidar_calibration/app/files/result_file.hpp"
 
 #include <gtest/gtest.h>
 #include <ros/time.h>

@@ -2,8 +2,8 @@
 // values are refused with the key, the value and the allowed range, and the rules across keys
 // hold after loading.
 
-#include "thermal_lidar_calibration/app/detection_parameters.hpp"
-#include "thermal_lidar_calibration/app/parameter_source.hpp"
+#include "thermal_lidar_calibration/app/parameters/detection_parameters.hpp"
+#include "thermal_lidar_calibration/app/parameters/parameter_source.hpp"
 
 #include "../support/test_files.hpp"
 

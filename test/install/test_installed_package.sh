@@ -30,7 +30,7 @@ cp "$build_dir"/catkin_generated/installspace/{_setup_util.py,env.sh,setup.*,loc
 share="$prefix/share/thermal_lidar_calibration"
 for f in "$share/package.xml" "$share/nodelet_plugins.xml" "$share/launch/calibration.launch" \
          "$share/config/default.yaml" "$share/rviz/calibration.rviz" "$share/msg/CalibrationStatus.msg" \
-         "$prefix/include/thermal_lidar_calibration/app/parameters.hpp" \
+         "$prefix/include/thermal_lidar_calibration/app/parameters/core_parameters.hpp" \
          "$prefix/lib/libthermal_lidar_calibration_nodelets.so"; do
   [ -e "$f" ] || { echo "FAIL: not installed: $f"; exit 1; }
 done
@@ -71,7 +71,7 @@ for lib in core app synthetic ros; do
 done
 grep -q '_include_dirs ".*eigen3' "$config" || { echo "FAIL: catkin_package does not export Eigen"; exit 1; }
 cat >"$work/downstream.cpp" <<'CPP'
-#include <thermal_lidar_calibration/app/parameters.hpp>
+#include <thermal_lidar_calibration/app/parameters/core_parameters.hpp>
 #include <iostream>
 int main(int, char** argv) {
   namespace tlc = thermal_lidar_calibration;

@@ -7,7 +7,7 @@
 //                    on ~status and say on /rosout what was wrong with each kind.
 
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
-#include "thermal_lidar_calibration/app/result_file.hpp"
+#include "thermal_lidar_calibration/app/files/result_file.hpp"
 
 #include <thermal_lidar_calibration/CalibrationStatus.h>
 

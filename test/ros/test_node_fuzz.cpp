@@ -7,8 +7,8 @@
 // the node must refuse, so none can pass as a valid frame (that would be a wrong pair, not a
 // robustness failure).
 
-#include "thermal_lidar_calibration/app/fault_throttle.hpp"
-#include "thermal_lidar_calibration/app/result_file.hpp"
+#include "thermal_lidar_calibration/app/runtime/fault_throttle.hpp"
+#include "thermal_lidar_calibration/app/files/result_file.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
 
 #include "../support/node_observer.hpp"

@@ -7,7 +7,7 @@
 // NodeMonitor.AStableDriveStaysOk: no WARN or ERROR at any time, nothing published; the extrinsic
 //   watched is the one the tf tree holds.
 
-#include "thermal_lidar_calibration/app/result_file.hpp"
+#include "thermal_lidar_calibration/app/files/result_file.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
 
 #include "../support/node_observer.hpp"

@@ -1,6 +1,6 @@
 // BadFrameReporter: the one wording and throttle of bad frames for the node and calibrate_bag.
 
-#include "thermal_lidar_calibration/app/bad_frame_reporter.hpp"
+#include "thermal_lidar_calibration/app/runtime/bad_frame_reporter.hpp"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // request; failures come back in the outcome (never as exceptions); a stop keeps the disk clean
 // unless the front end asks for its best-so-far.
 
-#include "thermal_lidar_calibration/app/calibration_job.hpp"
+#include "thermal_lidar_calibration/app/runtime/calibration_job.hpp"
 
 #include "thermal_lidar_calibration/core/loss.hpp"
 

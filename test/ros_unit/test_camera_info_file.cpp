@@ -1,6 +1,6 @@
 // camera_calibration YAML files: the shipped FLIR A65 file, round trips and bad files.
 
-#include "thermal_lidar_calibration/app/camera_info_file.hpp"
+#include "thermal_lidar_calibration/app/files/camera_info_file.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 
 #include "../support/test_files.hpp"

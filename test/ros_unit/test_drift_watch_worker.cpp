@@ -1,7 +1,7 @@
 // DriftWatchWorker: the node's drift watch on its own thread gives what DriftMonitor gives on the
 // same pairs in the same order (the verdicts do not depend on when the pairs arrive), confirms a
 // bump, and an accepted update becomes the reference.
-#include "thermal_lidar_calibration/app/drift_watch_worker.hpp"
+#include "thermal_lidar_calibration/node/drift_watch_worker.hpp"
 
 #include "../support/synthetic_pairs.hpp"
 

@@ -1,7 +1,7 @@
 // FaultThrottle: one warning line per kind of fault and period, counting what it held back
 // (issue 12, item 6).
 
-#include "thermal_lidar_calibration/app/fault_throttle.hpp"
+#include "thermal_lidar_calibration/app/runtime/fault_throttle.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // InputRates: rates over a window, and naming a topic that stops or never starts (issue 8).
 
-#include "thermal_lidar_calibration/app/input_rates.hpp"
+#include "thermal_lidar_calibration/node/input_rates.hpp"
 
 #include <gtest/gtest.h>
 

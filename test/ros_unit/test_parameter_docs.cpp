@@ -3,8 +3,8 @@
 // rewrite them:
 //   bash scripts/update_parameter_docs.sh   (runs this test with TLC_UPDATE_PARAMETER_DOCS=1)
 
-#include "thermal_lidar_calibration/app/parameter_docs.hpp"
-#include "thermal_lidar_calibration/app/parameter_catalog.hpp"
+#include "thermal_lidar_calibration/app/parameters/parameter_docs.hpp"
+#include "thermal_lidar_calibration/app/parameters/parameter_catalog.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // The descriptor machinery on a small table of its own: one row per key gives loading,
 // validation, describe and documentation, for every row type.
 
-#include "thermal_lidar_calibration/app/parameter_docs.hpp"
-#include "thermal_lidar_calibration/app/parameter_table.hpp"
+#include "thermal_lidar_calibration/app/parameters/parameter_docs.hpp"
+#include "thermal_lidar_calibration/app/parameters/parameter_table.hpp"
 
 #include "../support/test_files.hpp"
 

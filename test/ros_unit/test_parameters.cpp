@@ -1,11 +1,11 @@
 // The parameter table: defaults = Table 1, overrides from YAML, and the error messages.
 
-#include "thermal_lidar_calibration/app/detection_parameters.hpp"
-#include "thermal_lidar_calibration/app/parameters.hpp"
-#include "thermal_lidar_calibration/app/point_time_field.hpp"
-#include "thermal_lidar_calibration/app/node_parameters.hpp"
-#include "thermal_lidar_calibration/app/unknown_parameters.hpp"
-#include "thermal_lidar_calibration/app/parameter_catalog.hpp"
+#include "thermal_lidar_calibration/app/parameters/detection_parameters.hpp"
+#include "thermal_lidar_calibration/app/parameters/core_parameters.hpp"
+#include "thermal_lidar_calibration/app/parameters/point_time_field.hpp"
+#include "thermal_lidar_calibration/app/parameters/node_parameters.hpp"
+#include "thermal_lidar_calibration/app/parameters/unknown_parameters.hpp"
+#include "thermal_lidar_calibration/app/parameters/parameter_catalog.hpp"
 
 #include "../support/test_files.hpp"
 

@@ -1,6 +1,6 @@
 // Result file: every INTERFACE key, the extras, and reading it (or a truth file) back.
 
-#include "thermal_lidar_calibration/app/result_file.hpp"
+#include "thermal_lidar_calibration/app/files/result_file.hpp"
 
 #include "../support/test_files.hpp"
 

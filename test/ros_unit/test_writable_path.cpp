@@ -1,6 +1,6 @@
 // whyNotWritable: the start-time check of ~output_file and ~dataset_bag (issue 12, item 5).
 
-#include "thermal_lidar_calibration/app/writable_path.hpp"
+#include "thermal_lidar_calibration/app/files/writable_path.hpp"
 
 #include "../support/test_files.hpp"
 

@@ -4,7 +4,7 @@
 // node runs its body through CallbackGuard::run, so a failure is one throttled error naming the
 // callback and what went wrong, and the node keeps running.
 
-#include "thermal_lidar_calibration/app/fault_throttle.hpp"
+#include "thermal_lidar_calibration/app/runtime/fault_throttle.hpp"
 
 #include <ros/console.h>
 

@@ -8,7 +8,7 @@
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
 #include "thermal_lidar_calibration/core/person_motion.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
-#include "thermal_lidar_calibration/app/overlay_renderer.hpp"
+#include "thermal_lidar_calibration/node/overlay_renderer.hpp"
 
 #include <image_transport/image_transport.h>
 #include <ros/node_handle.h>

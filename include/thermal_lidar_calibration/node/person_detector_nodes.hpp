@@ -13,7 +13,7 @@
 // the node does not start). A message the detector cannot read gives a throttled one-line error
 // naming the topic (one line per kind of fault and period, counting the rest); the node stays up.
 
-#include "thermal_lidar_calibration/app/fault_throttle.hpp"
+#include "thermal_lidar_calibration/app/runtime/fault_throttle.hpp"
 #include "thermal_lidar_calibration/ros/person_detection_adapter.hpp"
 
 #include <image_transport/image_transport.h>

@@ -5,7 +5,7 @@
 
 #include "thermal_lidar_calibration/core/camera_model.hpp"
 #include "thermal_lidar_calibration/core/dataset_builder.hpp"
-#include "thermal_lidar_calibration/app/parameters.hpp"
+#include "thermal_lidar_calibration/app/parameters/core_parameters.hpp"
 #include "thermal_lidar_calibration/ros/person_detection_adapter.hpp"
 
 #include <rosbag/bag.h>

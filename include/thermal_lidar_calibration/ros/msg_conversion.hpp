@@ -2,7 +2,7 @@
 // Pure conversions between ROS messages and core types. Every decode failure throws
 // std::invalid_argument with one line saying what was wrong and what to do.
 
-#include "thermal_lidar_calibration/app/point_time_field.hpp"
+#include "thermal_lidar_calibration/app/parameters/point_time_field.hpp"
 #include "thermal_lidar_calibration/core/calibration_pair.hpp"
 #include "thermal_lidar_calibration/core/camera_model.hpp"
 #include "thermal_lidar_calibration/ros/velocity_fields.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 // A ParameterSource over a node's private parameters (~key), for calibration_node.
 
-#include "thermal_lidar_calibration/app/parameter_source.hpp"
+#include "thermal_lidar_calibration/app/parameters/parameter_source.hpp"
 
 #include <ros/node_handle.h>
 

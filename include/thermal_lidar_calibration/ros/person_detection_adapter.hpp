@@ -5,7 +5,7 @@
 // so that live and offline detection are the same code; what comes out feeds the ingest path
 // unchanged, exactly like masks and clusters from a detector of the user's own.
 
-#include "thermal_lidar_calibration/app/detection_parameters.hpp"
+#include "thermal_lidar_calibration/app/parameters/detection_parameters.hpp"
 #include "thermal_lidar_calibration/detection/lidar_person_detector.hpp"
 #include "thermal_lidar_calibration/detection/person_size_model.hpp"
 #include "thermal_lidar_calibration/detection/thermal_person_segmenter.hpp"

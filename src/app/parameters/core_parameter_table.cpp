@@ -1,0 +1,317 @@
+// The core parameter table: every key calibration_node and calibrate_bag share.
+//
+// Adding a key:
+//   1. give its struct a field whose member initialiser is the default (the core config
+//      structs in core/, or CoreParameters in app/parameters/core_parameters.hpp);
+//   2. add one row below, in the section it belongs to:
+//        <group>.integer / real / boolean / text / choice / integerChoice(
+//            "key", &Struct::field, allowed values, [unit,] "what it is", ["note"]);
+//   3. run scripts/update_parameter_docs.sh: it rewrites config/default.yaml and README's
+//      parameter table from the rows (test_parameter_docs fails until they agree).
+// A new config struct gets one group line (`auto x = t.group<XConfig>(...)`) and, if it has
+// rules across keys, a validate() called from loadCoreParameters(). Keys of one part only (the
+// node's) go in that part's own table with the same machinery (src/app/parameters/node_parameter_table.cpp).
+
+#include "thermal_lidar_calibration/app/parameters/core_parameters.hpp"
+
+#include "thermal_lidar_calibration/app/parameters/association_parameters.hpp"
+#include "thermal_lidar_calibration/app/parameters/point_time_field.hpp"
+
+#include <limits>
+
+namespace thermal_lidar_calibration {
+namespace {
+
+// Issue 8: how far to trust a result. The verdict's thresholds are the user's to set.
+void addQualityRows(ParameterTable<CoreParameters>& t) {
+  auto quality = t.group<QualityConfig>([](CoreParameters& p) -> QualityConfig& { return p.quality; });
+  auto uncertainty = t.group<UncertaintyConfig>(
+      [](CoreParameters& p) -> UncertaintyConfig& { return p.quality.uncertainty; });
+  auto coverage = t.group<CoverageConfig>([](CoreParameters& p) -> CoverageConfig& { return p.quality.coverage; });
+  auto verdict = t.group<VerdictConfig>([](CoreParameters& p) -> VerdictConfig& { return p.quality.verdict; });
+  t.section("Quality: uncertainty, coverage, verdict (beyond the paper; issue #8)");
+  quality.boolean("uncertainty", &QualityConfig::uncertainty_enabled,
+                  "95 % intervals per axis by a bootstrap over the pairs used, after the fit");
+  uncertainty.integer("uncertainty_resamples", &UncertaintyConfig::resamples, {50, 100000}, "",
+                      "bootstrap resamples (each a local refinement from the result; parallel, "
+                      "deterministic per seed)");
+  uncertainty.integer("uncertainty_block_pairs", &UncertaintyConfig::block_pairs, {1, 100000}, "",
+                      "pairs drawn together in runs of consecutive pairs (moving-block bootstrap: "
+                      "neighbouring pairs of a drive see the same people in nearly the same place); 1 = single pairs");
+  coverage.real("coverage_near_far_split_m", &CoverageConfig::near_far_split_m, aboveRange(0, 1000), "m",
+                "a person nearer than this (LiDAR range) counts as near");
+  verdict.real("quality_good_rotation_deg", &VerdictConfig::good_rotation_deg, aboveRange(0, 180), "deg",
+               "good: every rotation half-width at most this");
+  verdict.real("quality_good_translation_cm", &VerdictConfig::good_translation_cm, aboveRange(0, 1000), "cm",
+               "good: every translation half-width at most this");
+  verdict.real("quality_usable_rotation_deg", &VerdictConfig::usable_rotation_deg, aboveRange(0, 180), "deg",
+               "usable: every rotation half-width at most this", "at least quality_good_rotation_deg");
+  verdict.real("quality_usable_translation_cm", &VerdictConfig::usable_translation_cm, aboveRange(0, 1000),
+               "cm", "usable: every translation half-width at most this", "at least quality_good_translation_cm");
+  verdict.integer("quality_good_pairs", &VerdictConfig::good_pairs, {1, 100000}, "", "good: at least this many pairs used");
+  verdict.integer("quality_usable_pairs", &VerdictConfig::usable_pairs, {1, 100000}, "",
+                  "usable: at least this many pairs used", "at most quality_good_pairs");
+  verdict.real("quality_good_third_fraction", &VerdictConfig::good_third_fraction, closedRange(0, 1.0 / 3.0), "",
+               "good: each horizontal third of the image holds at least this fraction of the person pixels");
+  verdict.real("quality_usable_third_fraction", &VerdictConfig::usable_third_fraction, closedRange(0, 1.0 / 3.0), "",
+               "usable: each third at least this fraction (below: collect more, naming the third)",
+               "at most quality_good_third_fraction");
+  verdict.integer("quality_min_people_near", &VerdictConfig::min_people_near, {0, 100000}, "",
+                  "people nearer than coverage_near_far_split_m needed for good");
+  verdict.integer("quality_min_people_far", &VerdictConfig::min_people_far, {0, 100000}, "",
+                  "people at or beyond coverage_near_far_split_m needed for good");
+  verdict.integer("quality_good_distinct_positions", &VerdictConfig::good_distinct_positions, {0, 100000}, "",
+                  "good: people stood in at least this many distinct places");
+  verdict.integer("quality_usable_distinct_positions", &VerdictConfig::usable_distinct_positions, {0, 100000},
+                  "", "usable: at least this many distinct places", "at most quality_good_distinct_positions");
+  verdict.real("quality_max_loss_px", &VerdictConfig::max_loss_px, closedRange(0, 1e6), "px",
+               "collect_more when the fit's loss on the pairs it used is above this (typical fits 0.03-0.2 px; "
+               "fits carried by mismatched pairs 2-25 px)");
+}
+
+// Issue 21: the camera's time offset against the LiDAR, and the people's motion that measures it.
+void addTimingRows(ParameterTable<CoreParameters>& t) {
+  auto timing = t.group<TimeOffsetConfig>(
+      [](CoreParameters& p) -> TimeOffsetConfig& { return p.calibration.time_offset; });
+  auto motion = t.group<MotionConfig>([](CoreParameters& p) -> MotionConfig& { return p.motion; });
+  auto verdict = t.group<VerdictConfig>([](CoreParameters& p) -> VerdictConfig& { return p.quality.verdict; });
+  auto top = t.fields();
+  t.section("Sensor timing (beyond the paper; issue #21)");
+  timing.choice("time_offset_mode", &TimeOffsetConfig::mode,
+                {{"estimate", TimeOffsetMode::kEstimate}, {"fixed", TimeOffsetMode::kFixed}, {"none", TimeOffsetMode::kNone}},
+                "must be 'estimate', 'fixed' or 'none'",
+                "the image stamped t was captured at t + time_offset_s on the LiDAR's clock: estimate it with "
+                "the extrinsic, use time_offset_s as known, or ignore timing (refine: none always ignores it)");
+  timing.real("time_offset_s", &TimeOffsetConfig::offset_s, closedRange(-2, 2), "s",
+              "fixed: the known offset; estimate: where the search starts (positive: the image shows the world "
+              "after its stamp)");
+  timing.real("time_offset_max_s", &TimeOffsetConfig::max_s, aboveRange(0, 2), "s",
+              "estimate: the offset is searched within +- this", "at least |time_offset_s|");
+  timing.real("time_offset_coarse_step_s", &TimeOffsetConfig::coarse_step_s, aboveRange(0, 1), "s",
+              "grid step of the coarse search before the joint refinement", "at most time_offset_max_s");
+  timing.real("time_offset_max_resolution_ms", &TimeOffsetConfig::max_resolution_ms, aboveRange(0, 1e6), "ms",
+              "estimate only when the drive's motion resolves the offset to this (1 sigma, with the pose free); "
+              "else it stays at time_offset_s and the verdict says why (straight steady driving resolves nothing)");
+  timing.real("time_offset_unresolved_min_gain", &TimeOffsetConfig::unresolved_min_gain, closedRange(0, 1), "",
+              "estimate all the same when a joint refinement from the pose-only fit moves the offset by twice the "
+              "resolution and lowers the loss by this fraction (the stamps are far off; 1 = never)");
+  top.text("point_time_field", &CoreParameters::point_time_field,
+           TextRule::required("must be auto, none or the name of a PointCloud2 field"),
+           "the clusters' per-point capture time: auto (the first of time, t, timestamp, offset_time the "
+           "cloud has; none of them: no per-point times), none (ignore them) or a field name; float32/64 "
+           "seconds, relative to the header stamp or absolute, or (u)int32 nanoseconds relative to it");
+  motion.integer("motion_window_scans", &MotionConfig::window_scans, {1, 10}, "",
+                 "scans before and after a kept pair from which each person's velocity is fitted (a kept pair "
+                 "waits for the later ones)");
+  motion.real("motion_max_speed_mps", &MotionConfig::max_speed_mps, aboveRange(0, 100), "m/s",
+              "fastest motion of a person relative to the LiDAR searched for in the next scan (vehicle and "
+              "walk together)");
+  motion.real("motion_max_gap_s", &MotionConfig::max_gap_s, aboveRange(0, 5), "s",
+              "scans further apart than this do not continue a person's track");
+  verdict.real("quality_good_time_offset_ms", &VerdictConfig::good_time_offset_ms, closedRange(0, 1e4), "ms",
+               "good: the estimated offset's 95 % half-width at most this");
+  verdict.real("quality_usable_time_offset_ms", &VerdictConfig::usable_time_offset_ms, closedRange(0, 1e4), "ms",
+               "usable: at most this (and the drive's resolution too)", "at least quality_good_time_offset_ms");
+  verdict.real("quality_good_time_resolution_ms", &VerdictConfig::good_time_resolution_ms, closedRange(0, 1e4),
+               "ms",
+               "good: the drive's motion resolves the offset to this with the pose free (1 sigma; straight "
+               "steady driving past standing people resolves nothing)");
+  verdict.real("quality_timing_probe_ms", &VerdictConfig::timing_probe_ms, closedRange(0, 1e4), "ms",
+               "offset not estimated: a joint refinement from the fit that moves it this far and lowers the loss "
+               "by quality_timing_min_gain names timing in the verdict");
+  verdict.real("quality_timing_min_gain", &VerdictConfig::timing_min_gain, closedRange(0, 1), "",
+               "the loss reduction (fraction) that goes with quality_timing_probe_ms");
+}
+
+// Issue 9: the drift watch's window and what counts as a change (core/drift_config.hpp says why
+// each default is what it is).
+void addDriftRows(ParameterTable<CoreParameters>& t) {
+  auto drift = t.group<DriftConfig>([](CoreParameters& p) -> DriftConfig& { return p.drift; });
+  t.section("Drift watch (beyond the paper; issue #9)");
+  drift.integer("monitor_window_pairs", &DriftConfig::window_pairs, {6, 100000}, "",
+                "the latest kept pairs a drift test looks at");
+  drift.integer("monitor_period_pairs", &DriftConfig::period_pairs, {1, 100000}, "",
+                "a drift test after this many new kept pairs", "at most monitor_window_pairs");
+  drift.integer("monitor_confirm_windows", &DriftConfig::confirm_windows, {1, 1000}, "",
+                "consecutive changed tests that confirm a change (ERROR); one is WARN");
+  drift.real("monitor_significance", &DriftConfig::significance, aboveRange(0, 0.5), "",
+             "a window's fit must beat the reference on held-out pairs with a signed-rank p-value below this "
+             "(the offset test's two-sided p-values too)");
+  drift.real("monitor_min_loss_ratio", &DriftConfig::min_loss_ratio, closedRange(1, 1e6), "",
+             "and the reference's loss on the window must be this many times the fit's");
+  drift.real("monitor_min_rotation_deg", &DriftConfig::min_rotation_deg, closedRange(0, 180), "deg",
+             "and the change at least this large (or the translation's)");
+  drift.real("monitor_min_translation_cm", &DriftConfig::min_translation_cm, closedRange(0, 1e5), "cm",
+             "translation change that counts (0 and 0: any size)");
+  drift.real("monitor_min_offset_x_px", &DriftConfig::min_offset_x_px, closedRange(0, 1e4), "px",
+             "or: the people's image offsets against the reference differ from zero across the image "
+             "(two-sided signed-rank p below monitor_significance) by at least this (above 12: off)");
+  drift.real("monitor_min_offset_y_px", &DriftConfig::min_offset_y_px, closedRange(0, 1e4), "px",
+             "the same down the image (above 12: off)");
+  drift.integer("monitor_folds", &DriftConfig::folds, {2, 100000}, "",
+                "cross-fitting folds of the held-out test", "at most monitor_window_pairs / 3");
+  drift.integer("monitor_update_pairs", &DriftConfig::update_pairs, {6, 100000}, "",
+                "pairs since a confirmed change the new extrinsic is fitted on before it is final");
+  drift.real("monitor_update_full_significance", &DriftConfig::update_full_significance,
+             aboveRange(0, 1), "",
+             "the new extrinsic is the better of a turn about the camera centre and a shift, unless the "
+             "full pose predicts held-out pairs better with a signed-rank p-value below this (1: always "
+             "the full pose)");
+  drift.integer("monitor_update_uncertainty_resamples", &DriftConfig::update_uncertainty_resamples,
+                {0, 100000}, "",
+                "the new extrinsic's 95 % intervals per axis: block-bootstrap resamples over its pairs, each a "
+                "6-DOF refinement from it (0: none; else at least 2)");
+  drift.integer("monitor_fit_max_evaluations", &DriftConfig::fit_max_evaluations, {1, 100000000}, "",
+                "loss evaluations per refinement of a drift fit");
+  drift.real("monitor_max_update_rotation_deg", &DriftConfig::max_update_rotation_deg,
+             closedRange(0, 180), "deg",
+             "a new extrinsic turned further than this from the reference is never offered (calibrate again)");
+  drift.real("monitor_max_update_translation_cm", &DriftConfig::max_update_translation_cm,
+             closedRange(0, 1e5), "cm", "nor one moved further than this");
+  drift.real("monitor_min_timing_change_ms", &DriftConfig::min_timing_change_ms, closedRange(0, 1e4), "ms",
+             "a window the reference fits again with the camera's time offset moved by at least this, "
+             "pose held, is a timing change, not a drift (needs the result's time offset; the fit must "
+             "lower the loss by monitor_min_loss_ratio)");
+  drift.real("monitor_timing_explained_fraction", &DriftConfig::timing_explained_fraction,
+             closedRange(0, 1), "",
+             "a window the pose test calls changed is timing only if the offset alone explains this share of "
+             "what the window's own pose fit gains");
+}
+
+// Issue 21: when the LiDAR points were captured.
+ParameterTable<CoreParameters> makeCoreParameterTable() {
+  ParameterTable<CoreParameters> t;
+  auto top = t.fields();
+  auto calibration = t.group<CalibrationConfig>(
+      [](CoreParameters& p) -> CalibrationConfig& { return p.calibration; });
+  auto evolution = t.group<EvolutionConfig>(
+      [](CoreParameters& p) -> EvolutionConfig& { return p.calibration.evolution; });
+  auto outlier = t.group<OutlierConfig>(
+      [](CoreParameters& p) -> OutlierConfig& { return p.calibration.outlier; });
+  auto refine = t.group<RefineConfig>(
+      [](CoreParameters& p) -> RefineConfig& { return p.calibration.refine; });
+  auto gate = t.group<GateConfig>([](CoreParameters& p) -> GateConfig& { return p.gate; });
+
+  t.section("Algorithm and run control");
+  calibration.integerChoice(
+      "algorithm", &CalibrationConfig::algorithm,
+      {{1, Algorithm::kPlain}, {2, Algorithm::kOutlierRejection}},
+      "must be 1 (plain evolution) or 2 (with outlier rejection)",
+      "1 = Algorithm 1 (evolution only), 2 = Algorithm 2 (outlier rejection)");
+  refine.choice("refine", &RefineConfig::mode,
+                {{"none", RefineMode::kNone}, {"local", RefineMode::kLocal}},
+                "must be 'none' or 'local'", "local derivative-free refinement after the evolution");
+  calibration.integer("seed", &CalibrationConfig::seed, {0, std::numeric_limits<long long>::max()},
+                      "", "random seed: same seed + same data = same result");
+  calibration.integer("num_threads", &CalibrationConfig::num_threads, {0, 1024}, "",
+                      "loss threads, 0 = all cores (the result does not depend on it)");
+
+  t.section("Algorithm 1: evolutionary search (Table 1)");
+  evolution.integer("population_size", &EvolutionConfig::population_size, {2, 100000}, "",
+                    "N_pop, individuals per generation");
+  evolution.integer("max_iterations", &EvolutionConfig::max_iterations, {1, 100000}, "",
+                    "iter_max, generations");
+  evolution.real("rotation_interval_rad", &EvolutionConfig::rotation_interval_rad,
+                 aboveRange(0, 10), "rad", "initial rotation vector components ~ U(-a, a)");
+  evolution.real("translation_interval_m", &EvolutionConfig::translation_interval_m,
+                 aboveRange(0, 1000), "m", "initial translation components ~ U(-a, a)");
+  evolution.real("elite_fraction", &EvolutionConfig::elite_fraction, closedRange(0, 1), "",
+                 "pct_elite, fraction copied unchanged", "elite_fraction + crossover_fraction <= 1");
+  evolution.real("crossover_fraction", &EvolutionConfig::crossover_fraction, closedRange(0, 1),
+                 "", "pct_crossover, fraction made by crossover");
+  evolution.integer("initial_population_factor", &EvolutionConfig::initial_population_factor,
+                    {1, 1000}, "", "c2: first generation has c2 * N_pop individuals");
+  evolution.real("sigma_rot_rad", &EvolutionConfig::sigma_rot_rad, aboveRange(0, 3.5), "rad",
+                 "mutation noise U(-s, s) per rotation component");
+  evolution.real("sigma_trans_m", &EvolutionConfig::sigma_trans_m, aboveRange(0, 100), "m",
+                 "mutation noise U(-s, s) per translation component");
+  evolution.real("min_inside_fraction", &EvolutionConfig::min_inside_fraction, closedRange(0, 1),
+                 "", "initial individual kept if some pair projects >= this fraction inside the image");
+  calibration.real("behind_camera_penalty_c1", &CalibrationConfig::behind_camera_penalty_c1,
+                   aboveRange(0, 1e6), "",
+                   "c1 of Eq. (2): a point behind the camera scores c1 * max(h, w) px");
+
+  t.section("Algorithm 2: outlier rejection (Table 1)");
+  outlier.integer("min_sample_large", &OutlierConfig::min_sample_large, {1, 100000}, "",
+                  "min_sample when the dataset has >= min_sample_switch pairs");
+  outlier.integer("min_sample_small", &OutlierConfig::min_sample_small, {1, 100000}, "",
+                  "min_sample otherwise");
+  outlier.integer("min_sample_switch", &OutlierConfig::min_sample_switch, {1, 100000}, "",
+                  "dataset size at which min_sample_large is used");
+  outlier.integer("outlier_iterations", &OutlierConfig::iterations, {0, 1000}, "",
+                  "iter_outlier, fitting attempts on random subsets");
+  outlier.real("ratio_solution", &OutlierConfig::ratio_solution, closedRange(0, 1), "",
+               "a subset fit is accepted if this fraction of the other pairs is within threshold");
+  outlier.real("threshold_sample_px", &OutlierConfig::threshold_px, aboveRange(0, 1e6), "px",
+               "threshold_sample: a pair with Eq. (1) loss above this is an outlier",
+               "MS2 rig: 1.5");
+
+  t.section("Local refinement (beyond the paper; refine: local)");
+  refine.real("refine_initial_step_rot_rad", &RefineConfig::initial_step_rot_rad,
+              aboveRange(0, 1), "rad", "first probe step");
+  refine.real("refine_initial_step_trans_m", &RefineConfig::initial_step_trans_m,
+              aboveRange(0, 10), "m", "first probe step");
+  refine.real("refine_min_step_rot_rad", &RefineConfig::min_step_rot_rad, aboveRange(0, 1), "rad",
+              "stop when steps shrink below this", "<= refine_initial_step_rot_rad");
+  refine.real("refine_min_step_trans_m", &RefineConfig::min_step_trans_m, aboveRange(0, 10), "m",
+              "stop when steps shrink below this", "<= refine_initial_step_trans_m");
+  refine.integer("refine_max_evaluations", &RefineConfig::max_evaluations, {1, 100000000}, "",
+                 "loss evaluations at most");
+  refine.boolean("refine_exclude_truncated", &RefineConfig::exclude_truncated,
+                 "refine without pairs whose people touch the image border (while >= half the "
+                 "pairs remain)");
+  refine.boolean("refine_reselect_inliers", &RefineConfig::reselect_inliers,
+                 "after refining, re-select inliers among all pairs (Eq. 1 <= threshold_sample_px) "
+                 "and refine again until stable");
+
+  t.section("Frame gating and pairing (Section 3.1)");
+  gate.integer("max_people", &GateConfig::max_people, {1, 1000}, "",
+               "H_max: keep a frame only if both modalities count 1..H_max people");
+  gate.integer("skip_frames", &GateConfig::skip_frames, {0, 100000}, "",
+               "candidate frames ignored after a kept one");
+  gate.integer("min_points_per_cluster", &GateConfig::min_points_per_cluster, {1, 1000000}, "",
+               "a person cluster with fewer LiDAR points rejects the frame");
+  top.real("sync_slop", &CoreParameters::sync_slop_s, aboveRange(0, 10), "s",
+           "ApproximateTime max interval between image, mask and clusters");
+  top.integer("sync_queue_size", &CoreParameters::sync_queue_size, {2, 10000}, "messages",
+              "ApproximateTime queue per topic");
+  top.integer("pairs_required", &CoreParameters::pairs_required, {1, 100000}, "",
+              "node: pairs to collect before optimizing",
+              "calibrate_bag uses every pair in the bag");
+  addAssociationRows(t);
+  addQualityRows(t);
+  addTimingRows(t);
+  addDriftRows(t);
+  return t;
+}
+
+}  // namespace
+
+const ParameterTable<CoreParameters>& coreParameterTable() {
+  static const ParameterTable<CoreParameters> table = makeCoreParameterTable();
+  return table;
+}
+
+CoreParameters loadCoreParameters(const ParameterSource& source) {
+  CoreParameters p;
+  coreParameterTable().load(source, p);
+  // Cross-key rules (elite + crossover <= 1, min steps below initial steps, ...) are the core's.
+  p.calibration.validate();
+  p.gate.validate();
+  p.quality.validate();
+  p.motion.validate();
+  p.drift.validate();
+  p.pairing.validate();
+  try {
+    PointTimeField::parse(p.point_time_field);
+  } catch (const std::invalid_argument& e) {
+    throwBadParameter(source, "point_time_field", e.what());
+  }
+  return p;
+}
+
+std::vector<std::pair<std::string, std::string>> describeCoreParameters(const CoreParameters& p) {
+  return coreParameterTable().describe(p);
+}
+
+}  // namespace thermal_lidar_calibration
