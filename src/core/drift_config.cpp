@@ -1,6 +1,6 @@
 #include "thermal_lidar_calibration/core/drift_config.hpp"
 
-#include "parameter_range.hpp"
+#include "thermal_lidar_calibration/core/parameter_range.hpp"
 
 namespace thermal_lidar_calibration {
 using detail::requireRange;
