@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <sstream>
 #include <stdexcept>
 #include <utility>
 
@@ -101,13 +100,15 @@ const char* toString(PairingMode mode) {
   return mode == PairingMode::kCounts ? "counts" : "association";
 }
 
+const ParameterRanges<PairingConfig>& PairingConfig::ranges() {
+  static const auto ranges = ParameterRanges<PairingConfig>()
+      .add("initial_extrinsic_min_agreement", &PairingConfig::min_initial_agreement, closedRange(0, 1));
+  return ranges;
+}
+
 void PairingConfig::validate() const {
   association.validate();
-  if (!(min_initial_agreement >= 0.0 && min_initial_agreement <= 1.0)) {
-    std::ostringstream os;
-    os << "initial_extrinsic_min_agreement = " << min_initial_agreement << " is out of range: must be in [0, 1]";
-    throw std::invalid_argument(os.str());
-  }
+  ranges().check(*this);
 }
 
 std::vector<CalibrationPair> associatePairs(const CameraModel& camera, const std::vector<CalibrationPair>& candidates,

@@ -1,52 +1,74 @@
 #include "thermal_lidar_calibration/core/calibration_config.hpp"
 
-#include "thermal_lidar_calibration/core/parameter_range.hpp"
-
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 namespace thermal_lidar_calibration {
-using detail::requireRange;
+const ParameterRanges<LossConfig>& LossConfig::ranges() {
+  static const auto ranges = ParameterRanges<LossConfig>()
+      .add("behind_camera_penalty_c1", &LossConfig::behind_camera_penalty_c1, aboveRange(0, 1e6))
+      .add("margin_px", &LossConfig::margin_px, closedRange(0, 1000));
+  return ranges;
+}
 
 void LossConfig::validate() const {
-  requireRange("behind_camera_penalty_c1", behind_camera_penalty_c1, 0.0, 1e6, true);
-  requireRange("margin_px", margin_px, 0.0, 1000.0);
+  ranges().check(*this);
+}
+
+const ParameterRanges<EvolutionConfig>& EvolutionConfig::ranges() {
+  static const auto ranges = ParameterRanges<EvolutionConfig>()
+      .add("population_size", &EvolutionConfig::population_size, IntRange{2, 100000})
+      .add("max_iterations", &EvolutionConfig::max_iterations, IntRange{1, 100000})
+      .add("rotation_interval_rad", &EvolutionConfig::rotation_interval_rad, aboveRange(0, 10))
+      .add("translation_interval_m", &EvolutionConfig::translation_interval_m, aboveRange(0, 1000))
+      .add("elite_fraction", &EvolutionConfig::elite_fraction, closedRange(0, 1))
+      .add("crossover_fraction", &EvolutionConfig::crossover_fraction, closedRange(0, 1))
+      .add("initial_population_factor", &EvolutionConfig::initial_population_factor, IntRange{1, 1000})
+      .add("sigma_rot_rad", &EvolutionConfig::sigma_rot_rad, aboveRange(0, 3.5))
+      .add("sigma_trans_m", &EvolutionConfig::sigma_trans_m, aboveRange(0, 100))
+      .add("min_inside_fraction", &EvolutionConfig::min_inside_fraction, closedRange(0, 1));
+  return ranges;
 }
 
 void EvolutionConfig::validate() const {
-  requireRange("population_size", population_size, 2, 100000);
-  requireRange("max_iterations", max_iterations, 1, 100000);
-  requireRange("rotation_interval_rad", rotation_interval_rad, 0.0, 10.0, true);
-  requireRange("translation_interval_m", translation_interval_m, 0.0, 1000.0, true);
-  requireRange("elite_fraction", elite_fraction, 0.0, 1.0);
-  requireRange("crossover_fraction", crossover_fraction, 0.0, 1.0);
+  ranges().check(*this);
   if (elite_fraction + crossover_fraction > 1.0 + 1e-12) {
     throw std::invalid_argument("parameters 'elite_fraction' + 'crossover_fraction' = " +
                                 std::to_string(elite_fraction + crossover_fraction) +
                                 ": must not exceed 1");
   }
-  requireRange("initial_population_factor", initial_population_factor, 1, 1000);
-  requireRange("sigma_rot_rad", sigma_rot_rad, 0.0, 3.5, true);
-  requireRange("sigma_trans_m", sigma_trans_m, 0.0, 100.0, true);
-  requireRange("min_inside_fraction", min_inside_fraction, 0.0, 1.0);
+}
+
+const ParameterRanges<OutlierConfig>& OutlierConfig::ranges() {
+  static const auto ranges = ParameterRanges<OutlierConfig>()
+      .add("min_sample_large", &OutlierConfig::min_sample_large, IntRange{1, 100000})
+      .add("min_sample_small", &OutlierConfig::min_sample_small, IntRange{1, 100000})
+      .add("min_sample_switch", &OutlierConfig::min_sample_switch, IntRange{1, 100000})
+      .add("outlier_iterations", &OutlierConfig::iterations, IntRange{0, 1000})
+      .add("ratio_solution", &OutlierConfig::ratio_solution, closedRange(0, 1))
+      .add("threshold_sample_px", &OutlierConfig::threshold_px, aboveRange(0, 1e6));
+  return ranges;
 }
 
 void OutlierConfig::validate() const {
-  requireRange("min_sample_large", min_sample_large, 1, 100000);
-  requireRange("min_sample_small", min_sample_small, 1, 100000);
-  requireRange("min_sample_switch", min_sample_switch, 1, 100000);
-  requireRange("outlier_iterations", iterations, 0, 1000);
-  requireRange("ratio_solution", ratio_solution, 0.0, 1.0);
-  requireRange("threshold_sample_px", threshold_px, 0.0, 1e6, true);
+  ranges().check(*this);
+}
+
+const ParameterRanges<RefineConfig>& RefineConfig::ranges() {
+  static const auto ranges = ParameterRanges<RefineConfig>()
+      .add("refine_initial_step_rot_rad", &RefineConfig::initial_step_rot_rad, aboveRange(0, 1))
+      .add("refine_initial_step_trans_m", &RefineConfig::initial_step_trans_m, aboveRange(0, 10))
+      .add("refine_min_step_rot_rad", &RefineConfig::min_step_rot_rad, aboveRange(0, 1))
+      .add("refine_min_step_trans_m", &RefineConfig::min_step_trans_m, aboveRange(0, 10))
+      .add("refine_max_evaluations", &RefineConfig::max_evaluations, IntRange{1, 100000000});
+  return ranges;
 }
 
 void RefineConfig::validate() const {
-  requireRange("refine_initial_step_rot_rad", initial_step_rot_rad, 0.0, 1.0, true);
-  requireRange("refine_initial_step_trans_m", initial_step_trans_m, 0.0, 10.0, true);
+  ranges().check(*this);
   requireRange("refine_min_step_rot_rad", min_step_rot_rad, 0.0, initial_step_rot_rad, true);
   requireRange("refine_min_step_trans_m", min_step_trans_m, 0.0, initial_step_trans_m, true);
-  requireRange("refine_max_evaluations", max_evaluations, 1, 100000000);
 }
 
 const char* toString(TimeOffsetMode mode) {
@@ -58,34 +80,55 @@ const char* toString(TimeOffsetMode mode) {
   return "none";
 }
 
+const ParameterRanges<TimeOffsetConfig>& TimeOffsetConfig::ranges() {
+  static const auto ranges = ParameterRanges<TimeOffsetConfig>()
+      .add("time_offset_max_s", &TimeOffsetConfig::max_s, aboveRange(0, 2))
+      .add("time_offset_s", &TimeOffsetConfig::offset_s, closedRange(-2, 2))
+      .add("time_offset_coarse_step_s", &TimeOffsetConfig::coarse_step_s, aboveRange(0, 1))
+      .add("time_offset_initial_step_s", &TimeOffsetConfig::initial_step_s, aboveRange(0.0, 1.0))
+      .add("time_offset_max_resolution_ms", &TimeOffsetConfig::max_resolution_ms, aboveRange(0, 1e6))
+      .add("time_offset_unresolved_min_gain", &TimeOffsetConfig::unresolved_min_gain, closedRange(0, 1));
+  return ranges;
+}
+
 void TimeOffsetConfig::validate() const {
-  requireRange("time_offset_max_s", max_s, 0.0, 2.0, true);
-  requireRange("time_offset_s", offset_s, -2.0, 2.0);
+  ranges().check(*this);
   if (mode == TimeOffsetMode::kEstimate && std::abs(offset_s) > max_s) {
     throw std::invalid_argument("parameter 'time_offset_s' = " + std::to_string(offset_s) +
                                 ": the search starts there, so it must lie within +-time_offset_max_s (" +
                                 std::to_string(max_s) + ")");
   }
   requireRange("time_offset_coarse_step_s", coarse_step_s, 0.0, max_s, true);
-  requireRange("time_offset_initial_step_s", initial_step_s, 0.0, 1.0, true);
   requireRange("time_offset_min_step_s", min_step_s, 0.0, initial_step_s, true);
-  requireRange("time_offset_max_resolution_ms", max_resolution_ms, 0.0, 1e6, true);
-  requireRange("time_offset_unresolved_min_gain", unresolved_min_gain, 0.0, 1.0);
 }
 
-void VerticalCentringConfig::validate() const {
-  requireRange("vertical_centring_margin_px", margin_px, 0.0, 50.0);
-  requireRange("vertical_centring_max_mean_cost_px", max_mean_cost_px, 0.0, 1e6);
-  requireRange("vertical_centring_tolerance", tolerance, 0.0, 10.0);
-  requireRange("vertical_centring_rays", rays, 3, 360);
-  requireRange("vertical_centring_iterations", iterations, 1, 100);
-  requireRange("vertical_centring_resample_rays", resample_rays, 3, 360);
-  requireRange("vertical_centring_resample_bisections", resample_bisections, 1, 30);
-  requireRange("vertical_centring_pair_fit_px", pair_fit_px, 0.0, 1e6);
-  requireRange("vertical_centring_min_fitting_fraction", min_fitting_fraction, 0.0, 1.0);
+const ParameterRanges<CalibrationConfig>& CalibrationConfig::ranges() {
+  static const auto ranges = ParameterRanges<CalibrationConfig>()
+      .add("num_threads", &CalibrationConfig::num_threads, IntRange{0, 1024});
+  return ranges;
 }
+
+const ParameterRanges<VerticalCentringConfig>& VerticalCentringConfig::ranges() {
+  static const auto ranges = ParameterRanges<VerticalCentringConfig>()
+      .add("vertical_centring_margin_px", &VerticalCentringConfig::margin_px, closedRange(0, 50))
+      .add("vertical_centring_max_mean_cost_px", &VerticalCentringConfig::max_mean_cost_px, closedRange(0, 1e6))
+      .add("vertical_centring_tolerance", &VerticalCentringConfig::tolerance, closedRange(0, 10))
+      .add("vertical_centring_rays", &VerticalCentringConfig::rays, IntRange{3, 360})
+      .add("vertical_centring_iterations", &VerticalCentringConfig::iterations, IntRange{1, 100})
+      .add("vertical_centring_resample_rays", &VerticalCentringConfig::resample_rays, IntRange{3, 360})
+      .add("vertical_centring_resample_bisections", &VerticalCentringConfig::resample_bisections, IntRange{1, 30})
+      .add("vertical_centring_pair_fit_px", &VerticalCentringConfig::pair_fit_px, closedRange(0, 1e6))
+      .add("vertical_centring_min_fitting_fraction", &VerticalCentringConfig::min_fitting_fraction,
+           closedRange(0, 1));
+  return ranges;
+}
+
+// No table rows read these (the centring's settings are not user keys); the ranges still live
+// here, in the same one home as the others.
+void VerticalCentringConfig::validate() const { ranges().check(*this); }
 
 void CalibrationConfig::validate() const {
+  ranges().check(*this);
   if (algorithm != Algorithm::kPlain && algorithm != Algorithm::kOutlierRejection) {
     throw std::invalid_argument("parameter 'algorithm': must be 1 or 2");
   }
@@ -95,7 +138,6 @@ void CalibrationConfig::validate() const {
   time_offset.validate();
   vertical_centring.validate();
   LossConfig{behind_camera_penalty_c1, PixelRule::kNearest}.validate();
-  requireRange("num_threads", num_threads, 0, 1024);
 }
 
 }  // namespace thermal_lidar_calibration

@@ -8,20 +8,11 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
 namespace thermal_lidar_calibration {
 namespace {
-
-void requireIn(const char* key, double value, double lo, double hi, const char* range) {
-  if (!(value >= lo && value <= hi)) {
-    std::ostringstream os;
-    os << key << " = " << value << " is out of range: must be in " << range;
-    throw std::invalid_argument(os.str());
-  }
-}
 
 template <typename T>
 cv::Mat regionsFromIds(const cv::Mat& mask, int& count) {
@@ -80,13 +71,17 @@ struct ClusterHits {
 
 }  // namespace
 
-void AssociationConfig::validate() const {
-  requireIn("association_min_overlap", min_overlap, 0.0, 1.0, "[0, 1]");
-  requireIn("association_margin", margin, 0.0, 1.0, "[0, 1]");
-  requireIn("association_tolerance_px", tolerance_px, 0.0, 100.0, "[0, 100]");
-  requireIn("min_points_in_view", min_points_in_view, 1, 1e9, "[1, 1e9]");
-  requireIn("association_max_rounds", max_rounds, 1, 100, "[1, 100]");
+const ParameterRanges<AssociationConfig>& AssociationConfig::ranges() {
+  static const auto ranges = ParameterRanges<AssociationConfig>()
+      .add("association_min_overlap", &AssociationConfig::min_overlap, closedRange(0, 1))
+      .add("association_margin", &AssociationConfig::margin, closedRange(0, 1))
+      .add("association_tolerance_px", &AssociationConfig::tolerance_px, closedRange(0, 100))
+      .add("min_points_in_view", &AssociationConfig::min_points_in_view, IntRange{1, 1000000000})
+      .add("association_max_rounds", &AssociationConfig::max_rounds, IntRange{1, 100});
+  return ranges;
 }
+
+void AssociationConfig::validate() const { ranges().check(*this); }
 
 cv::Mat personRegions(const cv::Mat& mask, int* count) {
   if (mask.type() != CV_8UC1 && mask.type() != CV_16UC1) {

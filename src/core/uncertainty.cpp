@@ -20,15 +20,6 @@
 namespace thermal_lidar_calibration {
 namespace {
 
-void requireRange(const char* key, double value, double lo, double hi, bool open_lo) {
-  if (!(std::isfinite(value) && (open_lo ? value > lo : value >= lo) && value <= hi)) {
-    std::ostringstream s;
-    s << "parameter '" << key << "' = " << value << ": must be in " << (open_lo ? "(" : "[") << lo
-      << ", " << hi << "]";
-    throw std::invalid_argument(s.str());
-  }
-}
-
 // Resample b's own seed (splitmix64): independent streams, whatever thread runs them.
 std::uint64_t resampleSeed(std::uint64_t seed, std::uint64_t b) {
   std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (b + 1);
@@ -107,18 +98,24 @@ UncertaintyConfig UncertaintyConfig::quick() {
   return c;
 }
 
+const ParameterRanges<UncertaintyConfig>& UncertaintyConfig::ranges() {
+  static const auto ranges = ParameterRanges<UncertaintyConfig>()
+      .add("uncertainty_resamples", &UncertaintyConfig::resamples, IntRange{2, 100000})
+      .add("uncertainty_block_pairs", &UncertaintyConfig::block_pairs, IntRange{1, 100000})
+      .add("uncertainty_confidence", &UncertaintyConfig::confidence, aboveRange(0.0, 0.9999))
+      .add("uncertainty_num_threads", &UncertaintyConfig::num_threads, IntRange{0, 1024})
+      .add("uncertainty_initial_step_rot_rad", &UncertaintyConfig::initial_step_rot_rad, aboveRange(0.0, 1.0))
+      .add("uncertainty_initial_step_trans_m", &UncertaintyConfig::initial_step_trans_m, aboveRange(0.0, 10.0))
+      .add("uncertainty_max_evaluations", &UncertaintyConfig::max_evaluations, IntRange{1, 100000000})
+      .add("uncertainty_initial_step_time_s", &UncertaintyConfig::initial_step_time_s, aboveRange(0.0, 1.0))
+      .add("uncertainty_min_step_time_s", &UncertaintyConfig::min_step_time_s, aboveRange(0.0, 1.0));
+  return ranges;
+}
+
 void UncertaintyConfig::validate() const {
-  requireRange("uncertainty_resamples", resamples, 2, 100000, false);
-  requireRange("uncertainty_block_pairs", block_pairs, 1, 100000, false);
-  requireRange("uncertainty_confidence", confidence, 0.0, 0.9999, true);
-  requireRange("uncertainty_num_threads", num_threads, 0, 1024, false);
-  requireRange("uncertainty_initial_step_rot_rad", initial_step_rot_rad, 0.0, 1.0, true);
-  requireRange("uncertainty_initial_step_trans_m", initial_step_trans_m, 0.0, 10.0, true);
+  ranges().check(*this);
   requireRange("uncertainty_min_step_rot_rad", min_step_rot_rad, 0.0, initial_step_rot_rad, true);
   requireRange("uncertainty_min_step_trans_m", min_step_trans_m, 0.0, initial_step_trans_m, true);
-  requireRange("uncertainty_max_evaluations", max_evaluations, 1, 1e8, false);
-  requireRange("uncertainty_initial_step_time_s", initial_step_time_s, 0.0, 1.0, true);
-  requireRange("uncertainty_min_step_time_s", min_step_time_s, 0.0, 1.0, true);
 }
 
 std::vector<std::size_t> resamplePairs(const std::vector<std::size_t>& pairs, int block_pairs,

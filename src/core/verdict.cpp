@@ -9,14 +9,6 @@
 namespace thermal_lidar_calibration {
 namespace {
 
-void requireRange(const char* key, double value, double lo, double hi) {
-  if (!(std::isfinite(value) && value >= lo && value <= hi)) {
-    std::ostringstream s;
-    s << "parameter '" << key << "' = " << value << ": must be in [" << lo << ", " << hi << "]";
-    throw std::invalid_argument(s.str());
-  }
-}
-
 void requireOrder(const char* good_key, double good, const char* usable_key, double usable,
                   bool good_is_smaller) {
   if (good_is_smaller ? good > usable : good < usable) {
@@ -175,25 +167,31 @@ const char* toString(Verdict verdict) {
   }
 }
 
+const ParameterRanges<VerdictConfig>& VerdictConfig::ranges() {
+  static const auto ranges = ParameterRanges<VerdictConfig>()
+      .add("quality_good_rotation_deg", &VerdictConfig::good_rotation_deg, aboveRange(0, 180))
+      .add("quality_usable_rotation_deg", &VerdictConfig::usable_rotation_deg, aboveRange(0, 180))
+      .add("quality_good_translation_cm", &VerdictConfig::good_translation_cm, aboveRange(0, 1000))
+      .add("quality_usable_translation_cm", &VerdictConfig::usable_translation_cm, aboveRange(0, 1000))
+      .add("quality_good_pairs", &VerdictConfig::good_pairs, IntRange{1, 100000})
+      .add("quality_usable_pairs", &VerdictConfig::usable_pairs, IntRange{1, 100000})
+      .add("quality_good_third_fraction", &VerdictConfig::good_third_fraction, closedRange(0, 1.0 / 3.0))
+      .add("quality_usable_third_fraction", &VerdictConfig::usable_third_fraction, closedRange(0, 1.0 / 3.0))
+      .add("quality_min_people_near", &VerdictConfig::min_people_near, IntRange{0, 100000})
+      .add("quality_min_people_far", &VerdictConfig::min_people_far, IntRange{0, 100000})
+      .add("quality_good_distinct_positions", &VerdictConfig::good_distinct_positions, IntRange{0, 100000})
+      .add("quality_usable_distinct_positions", &VerdictConfig::usable_distinct_positions, IntRange{0, 100000})
+      .add("quality_max_loss_px", &VerdictConfig::max_loss_px, closedRange(0, 1e6))
+      .add("quality_good_time_offset_ms", &VerdictConfig::good_time_offset_ms, closedRange(0, 1e4))
+      .add("quality_usable_time_offset_ms", &VerdictConfig::usable_time_offset_ms, closedRange(0, 1e4))
+      .add("quality_good_time_resolution_ms", &VerdictConfig::good_time_resolution_ms, closedRange(0, 1e4))
+      .add("quality_timing_probe_ms", &VerdictConfig::timing_probe_ms, closedRange(0, 1e4))
+      .add("quality_timing_min_gain", &VerdictConfig::timing_min_gain, closedRange(0, 1));
+  return ranges;
+}
+
 void VerdictConfig::validate() const {
-  requireRange("quality_good_rotation_deg", good_rotation_deg, 0.0, 180.0);
-  requireRange("quality_usable_rotation_deg", usable_rotation_deg, 0.0, 180.0);
-  requireRange("quality_good_translation_cm", good_translation_cm, 0.0, 1e5);
-  requireRange("quality_usable_translation_cm", usable_translation_cm, 0.0, 1e5);
-  requireRange("quality_good_pairs", good_pairs, 0, 1e6);
-  requireRange("quality_usable_pairs", usable_pairs, 0, 1e6);
-  requireRange("quality_good_third_fraction", good_third_fraction, 0.0, 1.0 / 3.0);
-  requireRange("quality_usable_third_fraction", usable_third_fraction, 0.0, 1.0 / 3.0);
-  requireRange("quality_min_people_near", min_people_near, 0, 1e6);
-  requireRange("quality_min_people_far", min_people_far, 0, 1e6);
-  requireRange("quality_good_distinct_positions", good_distinct_positions, 0, 1e6);
-  requireRange("quality_usable_distinct_positions", usable_distinct_positions, 0, 1e6);
-  requireRange("quality_max_loss_px", max_loss_px, 0.0, 1e6);
-  requireRange("quality_good_time_offset_ms", good_time_offset_ms, 0.0, 1e4);
-  requireRange("quality_usable_time_offset_ms", usable_time_offset_ms, 0.0, 1e4);
-  requireRange("quality_good_time_resolution_ms", good_time_resolution_ms, 0.0, 1e4);
-  requireRange("quality_timing_probe_ms", timing_probe_ms, 0.0, 1e4);
-  requireRange("quality_timing_min_gain", timing_min_gain, 0.0, 1.0);
+  ranges().check(*this);
   requireOrder("quality_good_time_offset_ms", good_time_offset_ms, "quality_usable_time_offset_ms",
                usable_time_offset_ms, true);
   requireOrder("quality_good_rotation_deg", good_rotation_deg, "quality_usable_rotation_deg",

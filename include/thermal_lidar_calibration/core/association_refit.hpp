@@ -32,6 +32,7 @@ struct PairingConfig {
   // within threshold_sample_px of it (Eq. 1). At the truth 86 and 100 % of the count rule's pairs
   // do on two raw MS2-like drives (docs/validation/association.md); 5 deg and 30 cm off, none.
   double min_initial_agreement = 0.3;
+  static const ParameterRanges<PairingConfig>& ranges();  // checked by validate()
   void validate() const;  // throws std::invalid_argument naming the key and range
 };
 

@@ -3,6 +3,7 @@
 // Each struct's validate() throws std::invalid_argument naming the key, value and allowed range.
 
 #include "thermal_lidar_calibration/core/loss.hpp"
+#include "thermal_lidar_calibration/core/parameter_range.hpp"
 
 #include <cstdint>
 
@@ -20,6 +21,7 @@ struct EvolutionConfig {
   double sigma_rot_rad = 0.02;          // mutation noise U(-s, s) per rotation component
   double sigma_trans_m = 0.02;          // mutation noise U(-s, s) per translation component
   double min_inside_fraction = 0.5;     // initial individual kept if some pair projects >= this
+  static const ParameterRanges<EvolutionConfig>& ranges();  // checked by validate()
   void validate() const;
 };
 
@@ -34,6 +36,7 @@ struct OutlierConfig {
   int minSample(std::size_t pairs) const {
     return static_cast<int>(pairs) >= min_sample_switch ? min_sample_large : min_sample_small;
   }
+  static const ParameterRanges<OutlierConfig>& ranges();  // checked by validate()
   void validate() const;
 };
 
@@ -54,6 +57,7 @@ struct RefineConfig {
   // After each refinement, re-select the inliers among all pairs with Eq. (1) <= threshold_sample
   // and refine again until the set is stable; false refines once on Algorithm 2's inliers.
   bool reselect_inliers = true;
+  static const ParameterRanges<RefineConfig>& ranges();  // checked by validate()
   void validate() const;
 };
 
@@ -81,6 +85,7 @@ struct TimeOffsetConfig {
   // the loss by at least this fraction (end-of-scan stamps without per-point times, 110 ms off:
   // 57-84 %; steady drives that cannot tell, 0.3-5 %). 1 = never.
   double unresolved_min_gain = 0.25;
+  static const ParameterRanges<TimeOffsetConfig>& ranges();  // checked by validate()
   void validate() const;
 };
 
@@ -103,6 +108,7 @@ struct VerticalCentringConfig {
   int iterations = 3;              // outline traced again from each new centre
   int resample_rays = 8;           // the bootstrap's resamples: fewer directions,
   int resample_bisections = 4;     // a coarser outline, traced once (centreResample)
+  static const ParameterRanges<VerticalCentringConfig>& ranges();  // checked by validate()
   void validate() const;
 };
 
@@ -116,6 +122,7 @@ struct CalibrationConfig {
   double behind_camera_penalty_c1 = 5.0;  // c1 of Eq. (2)
   std::uint64_t seed = 1;
   int num_threads = 0;  // 0 = all cores; results do not depend on it
+  static const ParameterRanges<CalibrationConfig>& ranges();  // checked by validate()
   void validate() const;
 };
 

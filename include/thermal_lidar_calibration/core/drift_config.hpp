@@ -3,6 +3,8 @@
 // often it is tested, and what counts as a change. The fits themselves use the calibration's
 // refinement settings (CalibrationConfig::refine, threshold_sample_px, c1).
 
+#include "thermal_lidar_calibration/core/parameter_range.hpp"
+
 namespace thermal_lidar_calibration {
 
 struct DriftConfig {
@@ -77,6 +79,7 @@ struct DriftConfig {
   // at different speeds make a latency change no pose change at all).
   double min_timing_change_ms = 10.0;
   double timing_explained_fraction = 0.8;
+  static const ParameterRanges<DriftConfig>& ranges();  // checked by validate()
   void validate() const;   // throws std::invalid_argument naming the key and range
 };
 

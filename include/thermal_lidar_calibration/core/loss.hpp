@@ -5,6 +5,7 @@
 #include "thermal_lidar_calibration/core/camera_model.hpp"
 #include "thermal_lidar_calibration/core/distance_map.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
+#include "thermal_lidar_calibration/core/parameter_range.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -34,6 +35,7 @@ struct LossConfig {
   // a mask costs nothing, psi' = max(0, psi - margin_px); the vertical centring's loss
   // (vertical_centring.hpp).
   double margin_px = 0.0;
+  static const ParameterRanges<LossConfig>& ranges();  // checked by validate()
   void validate() const;
 };
 

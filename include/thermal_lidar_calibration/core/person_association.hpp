@@ -10,6 +10,7 @@
 #include "thermal_lidar_calibration/core/calibration_pair.hpp"
 #include "thermal_lidar_calibration/core/camera_model.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
+#include "thermal_lidar_calibration/core/parameter_range.hpp"
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
@@ -35,6 +36,7 @@ struct AssociationConfig {
   int min_points_in_view = 3;
   // Associate, refit, associate again until the pairs no longer change, at most this often.
   int max_rounds = 4;
+  static const ParameterRanges<AssociationConfig>& ranges();  // checked by validate()
   void validate() const;  // throws std::invalid_argument naming the key and range
 };
 

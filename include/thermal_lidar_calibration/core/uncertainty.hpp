@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "thermal_lidar_calibration/core/calibration_config.hpp"
+#include "thermal_lidar_calibration/core/parameter_range.hpp"
 #include "thermal_lidar_calibration/core/calibration_pair.hpp"
 #include "thermal_lidar_calibration/core/camera_model.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
@@ -50,6 +51,7 @@ struct UncertaintyConfig {
   double min_step_time_s = 1e-5;
   // A cheaper setting for windows and checks while collecting: 30 resamples, coarser stop.
   static UncertaintyConfig quick();
+  static const ParameterRanges<UncertaintyConfig>& ranges();  // checked by validate()
   void validate() const;  // throws std::invalid_argument naming the key and range
 };
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "thermal_lidar_calibration/core/coverage.hpp"
+#include "thermal_lidar_calibration/core/parameter_range.hpp"
 #include "thermal_lidar_calibration/core/timing_check.hpp"
 #include "thermal_lidar_calibration/core/uncertainty.hpp"
 
@@ -55,6 +56,7 @@ struct VerdictConfig {
   // (ms) and lowers the loss by at least `timing_min_gain` (fraction) names timing.
   double timing_probe_ms = 10.0;
   double timing_min_gain = 0.1;
+  static const ParameterRanges<VerdictConfig>& ranges();  // checked by validate()
   void validate() const;  // throws std::invalid_argument naming the key and range
 };
 

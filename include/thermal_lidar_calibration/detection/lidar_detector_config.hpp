@@ -3,6 +3,8 @@
 // threshold carries its unit and allowed range, and validate() names the key, the value and the
 // range of the first bad one (keys = the flat parameter keys of config/default.yaml).
 
+#include "thermal_lidar_calibration/core/parameter_range.hpp"
+
 namespace thermal_lidar_calibration {
 namespace detection {
 
@@ -17,6 +19,7 @@ struct LidarGroundConfig {
   double max_step_m = 0.12;       // lidar_ground_max_step_m: height jump accepted between neighbouring ground bins besides the slope, m; [0, 2]
   double tolerance_m = 0.15;      // lidar_ground_tolerance_m: points up to this above the local ground are ground, m; [0, 2]
   double object_spread_m = 0.4;   // lidar_ground_object_spread_m: a cell whose points span more than this in height holds an object; its lowest point anchors the ground only within lidar_ground_tolerance_m of the predicted ground, m; (0, 10]
+  static const ParameterRanges<LidarGroundConfig>& ranges();  // checked by validate()
   void validate() const;
 };
 
@@ -80,6 +83,7 @@ struct LidarPersonConfig {
   double row_gap_factor = 2.5;       // lidar_row_gap_factor: in row spacings; 0 = off; [0, 100]
   int min_points = 5;             // lidar_min_points: points on a person at any range; integer [1, 1000000]
   double min_points_at_10m = 20.0;// lidar_min_points_at_10m: points on a person at 10 m, scaled with (10 m / range)^2; [0, 1e6]
+  static const ParameterRanges<LidarPersonConfig>& ranges();  // checked by validate()
   void validate() const;
 };
 

@@ -3,6 +3,8 @@
 // threshold carries its unit and allowed range, and validate() names the key, the value and the
 // range of the first bad one (the keys are the flat parameter keys of config/default.yaml).
 
+#include "thermal_lidar_calibration/core/parameter_range.hpp"
+
 #include <string>
 
 namespace thermal_lidar_calibration {
@@ -103,6 +105,8 @@ struct ThermalSegmenterConfig {
   int size_history = 300;      // thermal_size_history: candidates remembered; 0 = off; integer [0, 100000]
   int size_min_samples = 60;   // thermal_size_min_samples: candidates before it judges; integer [10, 100000]
   double size_min_ratio = 0.7; // thermal_size_min_ratio: of a person's height at that foot row; [0, 1]
+
+  static const ParameterRanges<ThermalSegmenterConfig>& ranges();  // checked by validate()
 
   void validate() const;  // throws std::invalid_argument naming key, value and range
 };

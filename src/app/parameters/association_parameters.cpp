@@ -18,20 +18,20 @@ void addAssociationRows(ParameterTable<CoreParameters>& t) {
                  "count rule's pairs, every frame with people in both modalities is paired person by person at "
                  "the extrinsic, refitted until the pairs stop changing",
                  "refine none (the paper's method) always pairs by counts");
-  association.real("association_min_overlap", &AssociationConfig::min_overlap, closedRange(0, 1), "",
+  association.real("association_min_overlap", &AssociationConfig::min_overlap, kConfigRange, "",
                    "a LiDAR person's share of in-view points that must land on one mask region to pair with it");
-  association.real("association_margin", &AssociationConfig::margin, closedRange(0, 1), "",
+  association.real("association_margin", &AssociationConfig::margin, kConfigRange, "",
                    "that share must beat the person's second region, and every other person's share of that "
                    "region, by this much (else both are left out)");
-  association.real("association_tolerance_px", &AssociationConfig::tolerance_px, closedRange(0, 100), "px",
+  association.real("association_tolerance_px", &AssociationConfig::tolerance_px, kConfigRange, "px",
                    "a projected point this close to a region counts as on it");
-  association.integer("association_max_rounds", &AssociationConfig::max_rounds, {1, 100}, "",
+  association.integer("association_max_rounds", &AssociationConfig::max_rounds, kConfigRange, "",
                       "associate-and-refit rounds at most (they stop when the pairs no longer change)");
   top.text("initial_extrinsic_file", &CoreParameters::initial_extrinsic_file,
            TextRule::optional("start from the paper's first fit"),
            "a result YAML (rotation_vector or rotation_matrix, translation; its time_offset_s) to start "
            "association from instead of the first fit, if the count rule's pairs agree with it");
-  pairing.real("initial_extrinsic_min_agreement", &PairingConfig::min_initial_agreement, closedRange(0, 1), "",
+  pairing.real("initial_extrinsic_min_agreement", &PairingConfig::min_initial_agreement, kConfigRange, "",
                "the share of the count rule's pairs within threshold_sample_px of the initial extrinsic it "
                "needs; else it is refused (the result's association note says so) and the paper's fit runs");
 }

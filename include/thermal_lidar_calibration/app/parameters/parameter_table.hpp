@@ -13,6 +13,7 @@
 // and the load functions check them after the per-key reads.
 
 #include "thermal_lidar_calibration/app/parameters/parameter_source.hpp"
+#include "thermal_lidar_calibration/core/parameter_range.hpp"
 
 #include <functional>
 #include <optional>
@@ -23,18 +24,10 @@
 
 namespace thermal_lidar_calibration {
 
-// Allowed values of a number key.
-struct IntRange {
-  long long lo;
-  long long hi;  // std::numeric_limits<long long>::max() = no upper bound
-};
-struct RealRange {
-  double lo;
-  double hi;
-  bool lo_open;  // (lo, hi] instead of [lo, hi]
-};
-inline RealRange closedRange(double lo, double hi) { return {lo, hi, false}; }   // [lo, hi]
-inline RealRange aboveRange(double lo, double hi) { return {lo, hi, true}; }     // (lo, hi]
+// A number row whose range its config struct owns: Struct::ranges() (core/parameter_range.hpp),
+// the one list the struct's validate() checks too. Rows of keys no config checks give theirs.
+struct ConfigRange {};
+inline constexpr ConfigRange kConfigRange{};
 
 // What a string key may hold: any string with a documented meaning of "" (optional), or a
 // non-empty one (required; `requirement` is the error text for "").
@@ -181,6 +174,17 @@ class ParameterGroup {
         },
         [=](const Params& p) { return formatParameterNumber(get(access, p, field)); },
         [=](const Params& p) { return parameter_detail::yamlReal(get(access, p, field)); });
+  }
+
+  // The same with the range from Struct::ranges().
+  template <typename Int>
+  void integer(const std::string& key, Int Struct::*field, ConfigRange, const std::string& unit,
+               const std::string& doc, const std::string& note = "") {
+    integer(key, field, Struct::ranges().of(key, field), unit, doc, note);
+  }
+  void real(const std::string& key, double Struct::*field, ConfigRange, const std::string& unit,
+            const std::string& doc, const std::string& note = "") {
+    real(key, field, Struct::ranges().of(key, field), unit, doc, note);
   }
 
   void boolean(const std::string& key, bool Struct::*field, const std::string& doc,
