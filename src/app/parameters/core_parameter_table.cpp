@@ -11,7 +11,7 @@
 //   3. run scripts/update_parameter_docs.sh: it rewrites config/default.yaml and README's
 //      parameter table from the rows (test_parameter_docs fails until they agree).
 // A new config struct gets one group line (`auto x = t.group<XConfig>(...)`) and, if it has
-// rules across keys, a validate() called from loadCoreParameters(). Keys of one part only (the
+// rules across keys, a validate() called from finishLoading() below. Keys of one part only (the
 // node's) go in that part's own table with the same machinery (src/app/parameters/node_parameter_table.cpp).
 
 #include "thermal_lidar_calibration/app/parameters/core_parameters.hpp"
@@ -183,8 +183,10 @@ void addDriftRows(ParameterTable<CoreParameters>& t) {
              "what the window's own pose fit gains");
 }
 
-// Issue 21: when the LiDAR points were captured.
-ParameterTable<CoreParameters> makeCoreParameterTable() {
+}  // namespace
+
+template <>
+ParameterTable<CoreParameters> makeParameterTable() {
   ParameterTable<CoreParameters> t;
   auto top = t.fields();
   auto calibration = t.group<CalibrationConfig>(
@@ -292,16 +294,8 @@ ParameterTable<CoreParameters> makeCoreParameterTable() {
   return t;
 }
 
-}  // namespace
-
-const ParameterTable<CoreParameters>& coreParameterTable() {
-  static const ParameterTable<CoreParameters> table = makeCoreParameterTable();
-  return table;
-}
-
-CoreParameters loadCoreParameters(const ParameterSource& source) {
-  CoreParameters p;
-  coreParameterTable().load(source, p);
+template <>
+void finishLoading(const ParameterSource& source, CoreParameters& p) {
   // Cross-key rules (elite + crossover <= 1, min steps below initial steps, ...) are the core's.
   p.calibration.validate();
   p.gate.validate();
@@ -314,11 +308,6 @@ CoreParameters loadCoreParameters(const ParameterSource& source) {
   } catch (const std::invalid_argument& e) {
     throwBadParameter(source, "point_time_field", e.what());
   }
-  return p;
-}
-
-std::vector<std::pair<std::string, std::string>> describeCoreParameters(const CoreParameters& p) {
-  return coreParameterTable().describe(p);
 }
 
 }  // namespace thermal_lidar_calibration

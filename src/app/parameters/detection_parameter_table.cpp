@@ -195,7 +195,10 @@ void addLidarRows(ParameterTable<DetectionParameters>& t) {
               "fewest points on a person at 10 m, scaled with (10 m / range)^2");
 }
 
-ParameterTable<DetectionParameters> makeDetectionParameterTable() {
+}  // namespace
+
+template <>
+ParameterTable<DetectionParameters> makeParameterTable() {
   ParameterTable<DetectionParameters> t;
   auto raw = t.fields();
   t.section("Raw thermal input (detectors; issue #7)");
@@ -211,19 +214,10 @@ ParameterTable<DetectionParameters> makeDetectionParameterTable() {
   return t;
 }
 
-}  // namespace
-
-const ParameterTable<DetectionParameters>& detectionParameterTable() {
-  static const ParameterTable<DetectionParameters> table = makeDetectionParameterTable();
-  return table;
-}
-
-DetectionParameters loadDetectionParameters(const ParameterSource& source) {
-  DetectionParameters p;
-  detectionParameterTable().load(source, p);
+template <>
+void finishLoading(const ParameterSource&, DetectionParameters& p) {
   p.thermal.validate();  // the rules across keys (and the ranges again, from the list the rows read)
   p.lidar.validate();
-  return p;
 }
 
 std::string lidarWindowWarning(const detection::LidarPersonConfig& lidar, const CameraModel& camera) {
@@ -241,10 +235,6 @@ std::string lidarWindowWarning(const detection::LidarPersonConfig& lidar, const 
                 "see make wrong pairs; narrow the window to the camera's view with a few degrees of margin",
                 window_deg, lidar.min_azimuth_deg, lidar.max_azimuth_deg, view_deg);
   return text;
-}
-
-std::vector<std::pair<std::string, std::string>> describeDetectionParameters(const DetectionParameters& p) {
-  return detectionParameterTable().describe(p);
 }
 
 }  // namespace thermal_lidar_calibration

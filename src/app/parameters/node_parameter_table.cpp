@@ -1,16 +1,16 @@
 // calibration_node's own keys (calibrate_bag ignores them). Adding one: a field in
 // NodeParameters (app/parameters/node_parameters.hpp) and one row below; then
 // scripts/update_parameter_docs.sh (see src/app/parameters/core_parameter_table.cpp for the row forms).
-// Rules across keys go in loadNodeParameters().
+// Rules across keys go in finishLoading() below.
 
 #include "thermal_lidar_calibration/app/parameters/node_parameters.hpp"
 
 #include <stdexcept>
 
 namespace thermal_lidar_calibration {
-namespace {
 
-ParameterTable<NodeParameters> makeNodeParameterTable() {
+template <>
+ParameterTable<NodeParameters> makeParameterTable() {
   ParameterTable<NodeParameters> t;
   auto node = t.fields();
   t.section("calibration_node only (calibrate_bag ignores these)");
@@ -70,17 +70,9 @@ ParameterTable<NodeParameters> makeNodeParameterTable() {
   return t;
 }
 
-}  // namespace
-
-const ParameterTable<NodeParameters>& nodeParameterTable() {
-  static const ParameterTable<NodeParameters> table = makeNodeParameterTable();
-  return table;
-}
-
-NodeParameters loadNodeParameters(const ParameterSource& source) {
-  NodeParameters p;
-  p.core = loadCoreParameters(source);
-  nodeParameterTable().load(source, p);
+template <>
+void finishLoading(const ParameterSource& source, NodeParameters& p) {
+  p.core = loadParameters<CoreParameters>(source);
   // The minimum for ~calibrate cannot exceed what the node collects before optimizing anyway.
   if (p.min_pairs_to_calibrate > p.core.pairs_required) {
     if (source.has("min_pairs_to_calibrate")) {
@@ -98,11 +90,6 @@ NodeParameters loadNodeParameters(const ParameterSource& source) {
     throw std::invalid_argument(
         "parameter 'resume' = true but 'dataset_bag' is empty: name the dataset bag to resume");
   }
-  return p;
-}
-
-std::vector<std::pair<std::string, std::string>> describeNodeParameters(const NodeParameters& p) {
-  return nodeParameterTable().describe(p);
 }
 
 }  // namespace thermal_lidar_calibration

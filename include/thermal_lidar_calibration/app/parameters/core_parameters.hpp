@@ -34,12 +34,25 @@ struct CoreParameters {
   std::string initial_extrinsic_file;  // a result YAML; empty: the paper's first fit
 };
 
-const ParameterTable<CoreParameters>& coreParameterTable();
+// Its rows (core_parameter_table.cpp) and the rules across keys that follow them; with these,
+// parameterTable<>, loadParameters<> and describeParameters (parameter_table.hpp) serve this
+// struct, and the named forms below are theirs.
+template <>
+ParameterTable<CoreParameters> makeParameterTable();
+template <>
+void finishLoading(const ParameterSource& source, CoreParameters& params);
 
+inline const ParameterTable<CoreParameters>& coreParameterTable() {
+  return parameterTable<CoreParameters>();
+}
 // The defaults overridden by what `source` has, then the core's cross-key rules. Throws
 // std::invalid_argument("parameter 'population_size' = -3: must be an integer in [2, 100000]").
-CoreParameters loadCoreParameters(const ParameterSource& source);
+inline CoreParameters loadCoreParameters(const ParameterSource& source) {
+  return loadParameters<CoreParameters>(source);
+}
 // Every core key with its effective value (start-up log, result file), in table order.
-std::vector<std::pair<std::string, std::string>> describeCoreParameters(const CoreParameters& p);
+inline std::vector<std::pair<std::string, std::string>> describeCoreParameters(const CoreParameters& p) {
+  return describeParameters(p);
+}
 
 }  // namespace thermal_lidar_calibration

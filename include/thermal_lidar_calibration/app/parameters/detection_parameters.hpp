@@ -40,19 +40,32 @@ struct DetectionParameters {
   detection::ImageFlip input_flip = detection::ImageFlip::kNone;
 };
 
-const ParameterTable<DetectionParameters>& detectionParameterTable();
+// Its rows (detection_parameter_table.cpp) and the rules across keys that follow them; with these,
+// parameterTable<>, loadParameters<> and describeParameters (parameter_table.hpp) serve this
+// struct, and the named forms below are theirs.
+template <>
+ParameterTable<DetectionParameters> makeParameterTable();
+template <>
+void finishLoading(const ParameterSource& source, DetectionParameters& params);
 
+inline const ParameterTable<DetectionParameters>& detectionParameterTable() {
+  return parameterTable<DetectionParameters>();
+}
 // The defaults overridden by what `source` has, then the detectors' rules across keys. Throws
 // std::invalid_argument naming the key, the value and the allowed range.
-DetectionParameters loadDetectionParameters(const ParameterSource& source);
+inline DetectionParameters loadDetectionParameters(const ParameterSource& source) {
+  return loadParameters<DetectionParameters>(source);
+}
+// Every detection key with its effective value, in table order.
+inline std::vector<std::pair<std::string, std::string>> describeDetectionParameters(const DetectionParameters& p) {
+  return describeParameters(p);
+}
+
 // A one-line warning when the LiDAR's bearing window (lidar_min/max_azimuth_deg) is more than
 // 10 deg wider than the camera's horizontal field of view: the LiDAR then counts people the camera
 // cannot see, and a frame's counts can agree by chance with someone else in the image (wrong
 // pairs). "" when the window fits. Only the widths are compared: where the camera faces is what
 // the calibration finds.
 std::string lidarWindowWarning(const detection::LidarPersonConfig& lidar, const CameraModel& camera);
-
-// Every detection key with its effective value, in table order.
-std::vector<std::pair<std::string, std::string>> describeDetectionParameters(const DetectionParameters& p);
 
 }  // namespace thermal_lidar_calibration

@@ -41,13 +41,25 @@ struct NodeParameters {
   int overlay_max_points = 30000;      // [100, 10000000] points drawn per overlay image
 };
 
-// The node-only rows (the core rows are coreParameterTable()).
-const ParameterTable<NodeParameters>& nodeParameterTable();
+// Its rows (node_parameter_table.cpp) and the rules across keys that follow them; with these,
+// parameterTable<>, loadParameters<> and describeParameters (parameter_table.hpp) serve this
+// struct, and the named forms below are theirs.
+template <>
+ParameterTable<NodeParameters> makeParameterTable();
+template <>
+void finishLoading(const ParameterSource& source, NodeParameters& params);
 
-// Core keys, node-only keys, then the node's cross-key rules. Throws std::invalid_argument
+inline const ParameterTable<NodeParameters>& nodeParameterTable() {
+  return parameterTable<NodeParameters>();
+}
+// Node-only keys, then the core keys and the node's cross-key rules. Throws std::invalid_argument
 // naming the key, the value and the allowed range; the node refuses to start.
-NodeParameters loadNodeParameters(const ParameterSource& source);
+inline NodeParameters loadNodeParameters(const ParameterSource& source) {
+  return loadParameters<NodeParameters>(source);
+}
 // "key: value" for every node-only key (the core keys come from describeCoreParameters).
-std::vector<std::pair<std::string, std::string>> describeNodeParameters(const NodeParameters& p);
+inline std::vector<std::pair<std::string, std::string>> describeNodeParameters(const NodeParameters& p) {
+  return describeParameters(p);
+}
 
 }  // namespace thermal_lidar_calibration

@@ -1,16 +1,16 @@
 #pragma once
-// The descriptor machinery behind every parameter table: the core keys
-// (src/app/parameters/core_parameter_table.cpp), the node-only keys (src/app/parameters/node_parameter_table.cpp) and
-// any table a part adds later. A table is a list of rows; a row knows its key, the struct field
+// The descriptor machinery behind every parameter table: the core keys (core_parameter_table.cpp),
+// the person detectors' (detection_parameter_table.cpp), the node-only keys
+// (node_parameter_table.cpp) and any table a part adds later. A table is a list of rows; a row knows its key, the struct field
 // it fills, its type and allowed range, unit, documentation and section. From the rows come
 //   - loading from any ParameterSource (a YAML file, a NodeHandle), leaving absent keys at the
 //     struct's default (the member initialisers are the defaults);
 //   - per-key validation with one wording for every bad value:
 //       parameter 'population_size' = -3: must be an integer in [2, 100000]
 //   - the known keys (typo warnings), the effective "key: value" lines (start-up log, result
-//     file) and the documentation (config/default.yaml, README's table: app/parameters/parameter_docs.hpp).
-// Cross-key rules (elite + crossover <= 1, ...) are not rows: the config structs' validate()
-// and the load functions check them after the per-key reads.
+//     file) and the documentation (config/default.yaml, docs/parameters.md: parameter_docs.hpp).
+// Cross-key rules (elite + crossover <= 1, ...) are not rows: the config structs' validate(),
+// called from each table's finishLoading() after the per-key reads, checks them.
 
 #include "thermal_lidar_calibration/app/parameters/parameter_source.hpp"
 #include "thermal_lidar_calibration/core/parameter_range.hpp"
@@ -269,5 +269,39 @@ class ParameterGroup {
   ParameterTable<Params>& table_;
   Access access_;
 };
+
+// The scaffold every table shares, written once. A table's .cpp defines two specialisations:
+//   template <> ParameterTable<X> makeParameterTable<X>()    its rows
+//   template <> void finishLoading<X>(source, X&)            after the rows: the rules across keys
+// and its header declares them; then parameterTable<X>(), loadParameters<X>(source) and
+// describeParameters(x) work for X.
+template <typename Params>
+ParameterTable<Params> makeParameterTable();
+template <typename Params>
+void finishLoading(const ParameterSource& source, Params& params);
+
+// The table of Params, built on first use.
+template <typename Params>
+const ParameterTable<Params>& parameterTable() {
+  static const ParameterTable<Params> table = makeParameterTable<Params>();
+  return table;
+}
+
+// The defaults (Params' member initialisers) overridden by what `source` has, then the rules
+// across keys. Throws std::invalid_argument naming the key, the value and the allowed range:
+//   parameter 'population_size' = -3: must be an integer in [2, 100000]
+template <typename Params>
+Params loadParameters(const ParameterSource& source) {
+  Params params;
+  parameterTable<Params>().load(source, params);
+  finishLoading(source, params);
+  return params;
+}
+
+// Every key of the table with its effective value (start-up log, result file), in table order.
+template <typename Params>
+std::vector<std::pair<std::string, std::string>> describeParameters(const Params& params) {
+  return parameterTable<Params>().describe(params);
+}
 
 }  // namespace thermal_lidar_calibration
