@@ -18,6 +18,17 @@ namespace {
 
 constexpr std::int32_t kFalseClusterLabelBase = 1000;
 
+// Range noise along each ray (none when sigma is 0: no draw either).
+void addRangeNoise(double sigma_m, std::mt19937_64& rng, std::vector<LidarReturn>* returns) {
+  if (sigma_m <= 0.0) return;
+  std::normal_distribution<double> gauss(0.0, sigma_m);
+  for (auto& r : *returns) {
+    const double noisy = std::max(0.05, r.range_m + gauss(rng));
+    r.point *= static_cast<float>(noisy / r.range_m);
+    r.range_m = static_cast<float>(noisy);
+  }
+}
+
 }  // namespace
 
 std::uint64_t mixSeed(std::uint64_t seed, std::uint64_t stream, std::uint64_t index) {
@@ -196,39 +207,60 @@ bool SyntheticRig::projectsIntoEmptyRegion(const Eigen::Vector3f& point_lidar, i
 }
 
 SyntheticFrame SyntheticRig::renderWorld(const FrameWorld& world, int index, double stamp_s) const {
+  // Three random streams of the frame's own; the steps below draw from them in this order.
   std::mt19937_64 rng_detect(mixSeed(config_.seed, 1, static_cast<std::uint64_t>(index)));
   std::mt19937_64 rng_noise(mixSeed(config_.seed, 2, static_cast<std::uint64_t>(index)));
   std::mt19937_64 rng_image(mixSeed(config_.seed, 3, static_cast<std::uint64_t>(index)));
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const NoiseConfig& noise = config_.noise;
-  const DetectorConfig& det = config_.detector;
 
   SyntheticFrame frame;
   frame.index = index;
   frame.stamp_s = stamp_s;
 
   // LiDAR scan with range noise along each ray; the camera's nearest object per pixel.
-  const std::vector<WorldObject>& objects = world.objects;
   Observation seen = observe(world, index);
-  std::vector<LidarReturn>& returns = seen.returns;
-  const cv::Mat& owners = seen.owners;
-  if (noise.range_sigma_m > 0.0) {
-    std::normal_distribution<double> gauss(0.0, noise.range_sigma_m);
-    for (auto& r : returns) {
-      const double noisy = std::max(0.05, r.range_m + gauss(rng_noise));
-      r.point *= static_cast<float>(noisy / r.range_m);
-      r.range_m = static_cast<float>(noisy);
-    }
-  }
-  std::vector<int> hits(objects.size(), 0);
-  for (const auto& r : returns) {
-    if (r.object >= 0) ++hits[static_cast<std::size_t>(r.object)];
+  addRangeNoise(config_.noise.range_sigma_m, rng_noise, &seen.returns);
+  const Detected detected = detect(world, seen, index, rng_detect, &frame);
+
+  const std::vector<WorldObject>& objects = world.objects;
+  const bool point_times = config_.timing.lidar_point_time;
+  for (std::size_t i = 0; i < seen.returns.size(); ++i) {
+    const LidarReturn& r = seen.returns[i];
+    if (r.object < 0 || !detected.in_cluster[static_cast<std::size_t>(r.object)]) continue;
+    const WorldObject& obj = objects[static_cast<std::size_t>(r.object)];
+    frame.cluster_points.push_back(r.point);
+    frame.cluster_labels.push_back(obj.isPerson() ? obj.person_id : kFalseClusterLabelBase + obj.clutter_id);
+    if (point_times) frame.cluster_time_s.push_back(seen.time_s[i]);
   }
 
+  drawMask(objects, seen.owners, detected.in_mask, rng_noise, &frame);
+  // Counted as the ingest path counts them: a single-id mask split in two (a person cut by a
+  // post) is two people to the consumer, so it is two here too.
+  frame.counts = countPeople(frame.mask, frame.cluster_labels);
+
+  const double drift = 3.0 * std::sin(0.05 * stamp_s);
+  frame.image = rendererAt(index).renderImage(seen.owners, objects, config_.image_depth, config_.noise.image_noise,
+                                              drift, rng_image);
+  if (config_.raw) {
+    writeRawCloud(objects, seen, &frame);
+  } else if (config_.full_cloud) {
+    writeFullCloud(objects, seen, &frame);
+  }
+  return frame;
+}
+
+SyntheticRig::Detected SyntheticRig::detect(const FrameWorld& world, const Observation& seen, int index,
+                                            std::mt19937_64& rng, SyntheticFrame* frame) const {
+  const std::vector<WorldObject>& objects = world.objects;
+  const NoiseConfig& noise = config_.noise;
+  const DetectorConfig& det = config_.detector;
+  std::vector<int> hits(objects.size(), 0);
+  for (const auto& r : seen.returns) {
+    if (r.object >= 0) ++hits[static_cast<std::size_t>(r.object)];
+  }
   std::vector<int> pixels(objects.size(), 0);
-  for (int v = 0; v < owners.rows; ++v) {
-    const int* own = owners.ptr<int>(v);
-    for (int u = 0; u < owners.cols; ++u) {
+  for (int v = 0; v < seen.owners.rows; ++v) {
+    const int* own = seen.owners.ptr<int>(v);
+    for (int u = 0; u < seen.owners.cols; ++u) {
       if (own[u] >= 0) ++pixels[static_cast<std::size_t>(own[u])];
     }
   }
@@ -244,49 +276,47 @@ SyntheticFrame SyntheticRig::renderWorld(const FrameWorld& world, int index, dou
     camera_distance[j] = objects[j].solid.boundingCentre().head<2>().norm();
   }
 
-  // Detectors. Both random draws are made for every candidate so outcomes stay aligned.
-  std::vector<char> in_cluster(objects.size(), 0), in_mask(objects.size(), 0);
+  // Both random draws are made for every candidate so outcomes stay aligned.
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Detected out;
+  out.in_cluster.assign(objects.size(), 0);
+  out.in_mask.assign(objects.size(), 0);
+  std::vector<char>& in_cluster = out.in_cluster;
   for (std::size_t j = 0; j < objects.size(); ++j) {
-    const double u_cluster = unit(rng_detect);
-    const double u_mask = unit(rng_detect);
+    const double u_cluster = unit(rng);
+    const double u_mask = unit(rng);
     const bool lidar_in_range = lidar_distance[j] <= det.detection_range_m;
     const bool camera_in_range = camera_distance[j] <= det.detection_range_m;
     if (!lidar_in_range && !camera_in_range) continue;
     if (objects[j].isPerson()) {
       in_cluster[j] = lidar_in_range && hits[j] >= det.min_cluster_points && u_cluster >= noise.miss_rate;
-      in_mask[j] = camera_in_range && pixels[j] >= det.min_mask_pixels && u_mask >= noise.miss_rate;
+      out.in_mask[j] = camera_in_range && pixels[j] >= det.min_mask_pixels && u_mask >= noise.miss_rate;
       PersonInFrame p;
       p.person_id = objects[j].person_id;
       p.distance_m = lidar_in_range ? lidar_distance[j] : camera_distance[j];
       p.lidar_hits = hits[j];
       p.visible_pixels = pixels[j];
       p.in_cluster = in_cluster[j] != 0;
-      frame.people.push_back(p);
+      frame->people.push_back(p);
     } else {
       in_cluster[j] = lidar_in_range && hits[j] >= det.min_cluster_points && u_cluster < noise.false_cluster_rate;
     }
   }
   if (config_.empty_image_region != ImageRegion::kNone) {
     // Nobody is reported in the empty region: not even a post mistaken for a person.
-    for (const auto& r : returns) {
+    for (const auto& r : seen.returns) {
       if (r.object >= 0 && in_cluster[r.object] && !objects[r.object].isPerson() &&
           projectsIntoEmptyRegion(r.point, index, 0)) {
         in_cluster[r.object] = 0;
       }
     }
   }
+  return out;
+}
 
-  const bool point_times = config_.timing.lidar_point_time;
-  for (std::size_t i = 0; i < returns.size(); ++i) {
-    const LidarReturn& r = returns[i];
-    if (r.object < 0 || !in_cluster[static_cast<std::size_t>(r.object)]) continue;
-    const WorldObject& obj = objects[static_cast<std::size_t>(r.object)];
-    frame.cluster_points.push_back(r.point);
-    frame.cluster_labels.push_back(obj.isPerson() ? obj.person_id : kFalseClusterLabelBase + obj.clutter_id);
-    if (point_times) frame.cluster_time_s.push_back(seen.time_s[i]);
-  }
-
-  // Mask: ids 1..N by increasing person id.
+void SyntheticRig::drawMask(const std::vector<WorldObject>& objects, const cv::Mat& owners,
+                            const std::vector<char>& in_mask, std::mt19937_64& rng, SyntheticFrame* frame) const {
+  // Ids 1..N by increasing person id.
   std::vector<int> mask_id(objects.size(), 0);
   std::map<int, std::size_t> by_person;
   for (std::size_t j = 0; j < objects.size(); ++j) {
@@ -294,71 +324,73 @@ SyntheticFrame SyntheticRig::renderWorld(const FrameWorld& world, int index, dou
   }
   int next_id = 1;
   for (const auto& kv : by_person) mask_id[kv.second] = next_id++;
-  for (auto& p : frame.people) {
+  for (auto& p : frame->people) {
     for (std::size_t j = 0; j < objects.size(); ++j) {
       if (objects[j].person_id == p.person_id) p.mask_id = mask_id[j];
     }
   }
-  frame.mask = cv::Mat::zeros(owners.rows, owners.cols, CV_8UC1);
+  frame->mask = cv::Mat::zeros(owners.rows, owners.cols, CV_8UC1);
   for (int v = 0; v < owners.rows; ++v) {
     const int* own = owners.ptr<int>(v);
-    std::uint8_t* m = frame.mask.ptr<std::uint8_t>(v);
+    std::uint8_t* m = frame->mask.ptr<std::uint8_t>(v);
     for (int u = 0; u < owners.cols; ++u) {
       if (own[u] >= 0) m[u] = static_cast<std::uint8_t>(mask_id[static_cast<std::size_t>(own[u])]);
     }
   }
-  perturbMaskEdges(frame.mask, noise.mask_edge_px, rng_noise);
-  if (unit(rng_noise) < noise.false_mask_rate) addFalseMaskBlob(frame.mask, next_id, rng_noise);
+  const NoiseConfig& noise = config_.noise;
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  perturbMaskEdges(frame->mask, noise.mask_edge_px, rng);
+  if (unit(rng) < noise.false_mask_rate) addFalseMaskBlob(frame->mask, next_id, rng);
   const ColumnRange empty = emptyColumns();
   if (empty.end > empty.begin) {  // edge noise and false blobs stay out of the empty region too
-    frame.mask.colRange(empty.begin, empty.end).setTo(0);
+    frame->mask.colRange(empty.begin, empty.end).setTo(0);
   }
-  if (config_.mask_style == MaskStyle::kBinary) frame.mask.setTo(255, frame.mask != 0);
-  // Counted as the ingest path counts them: a single-id mask split in two (a person cut by a
-  // post) is two people to the consumer, so it is two here too.
-  frame.counts = countPeople(frame.mask, frame.cluster_labels);
+  if (config_.mask_style == MaskStyle::kBinary) frame->mask.setTo(255, frame->mask != 0);
+}
 
-  const double drift = 3.0 * std::sin(0.05 * stamp_s);
-  frame.image = rendererAt(index).renderImage(owners, objects, config_.image_depth, noise.image_noise, drift, rng_image);
-
-  if (config_.raw) {
-    frame.truth_person_ids = cv::Mat::zeros(owners.rows, owners.cols, CV_16UC1);
-    for (int v = 0; v < owners.rows; ++v) {
-      const int* own = owners.ptr<int>(v);
-      std::uint16_t* id = frame.truth_person_ids.ptr<std::uint16_t>(v);
-      for (int u = 0; u < owners.cols; ++u) {
-        if (own[u] >= 0) id[u] = static_cast<std::uint16_t>(objects[static_cast<std::size_t>(own[u])].person_id);
-      }
-    }
-    for (std::size_t i = 0; i < returns.size(); ++i) {
-      const LidarReturn& r = returns[i];
-      if (r.range_m > config_.raw_cloud_max_range_m) continue;
-      frame.full_points.push_back(r.point);
-      if (point_times) frame.full_time_s.push_back(seen.time_s[i]);
-      float intensity = 15.f + static_cast<float>(r.beam % 4);
-      std::uint32_t truth_id = 0;
-      if (r.object >= 0) {
-        const WorldObject& obj = objects[static_cast<std::size_t>(r.object)];
-        intensity = obj.isPerson() ? 80.f : 45.f;
-        truth_id = obj.isPerson() ? static_cast<std::uint32_t>(obj.person_id) : 0u;
-      }
-      frame.full_intensity.push_back(intensity);
-      frame.full_ring.push_back(static_cast<std::uint16_t>(r.beam));
-      frame.full_truth_id.push_back(truth_id);
-    }
-  } else if (config_.full_cloud) {
-    for (std::size_t i = 0; i < returns.size(); ++i) {
-      const LidarReturn& r = returns[i];
-      if (r.azimuth % config_.full_cloud_azimuth_step != 0 || r.range_m > config_.full_cloud_max_range_m) continue;
-      if (r.object < 0 && r.beam % 2 != 0) continue;  // ground: every second beam is plenty
-      frame.full_points.push_back(r.point);
-      if (point_times) frame.full_time_s.push_back(seen.time_s[i]);
-      float intensity = 15.f + static_cast<float>(r.beam % 4);
-      if (r.object >= 0) intensity = objects[static_cast<std::size_t>(r.object)].isPerson() ? 80.f : 45.f;
-      frame.full_intensity.push_back(intensity);
+void SyntheticRig::writeRawCloud(const std::vector<WorldObject>& objects, const Observation& seen,
+                                 SyntheticFrame* frame) const {
+  const cv::Mat& owners = seen.owners;
+  frame->truth_person_ids = cv::Mat::zeros(owners.rows, owners.cols, CV_16UC1);
+  for (int v = 0; v < owners.rows; ++v) {
+    const int* own = owners.ptr<int>(v);
+    std::uint16_t* id = frame->truth_person_ids.ptr<std::uint16_t>(v);
+    for (int u = 0; u < owners.cols; ++u) {
+      if (own[u] >= 0) id[u] = static_cast<std::uint16_t>(objects[static_cast<std::size_t>(own[u])].person_id);
     }
   }
-  return frame;
+  const bool point_times = config_.timing.lidar_point_time;
+  for (std::size_t i = 0; i < seen.returns.size(); ++i) {
+    const LidarReturn& r = seen.returns[i];
+    if (r.range_m > config_.raw_cloud_max_range_m) continue;
+    frame->full_points.push_back(r.point);
+    if (point_times) frame->full_time_s.push_back(seen.time_s[i]);
+    float intensity = 15.f + static_cast<float>(r.beam % 4);
+    std::uint32_t truth_id = 0;
+    if (r.object >= 0) {
+      const WorldObject& obj = objects[static_cast<std::size_t>(r.object)];
+      intensity = obj.isPerson() ? 80.f : 45.f;
+      truth_id = obj.isPerson() ? static_cast<std::uint32_t>(obj.person_id) : 0u;
+    }
+    frame->full_intensity.push_back(intensity);
+    frame->full_ring.push_back(static_cast<std::uint16_t>(r.beam));
+    frame->full_truth_id.push_back(truth_id);
+  }
+}
+
+void SyntheticRig::writeFullCloud(const std::vector<WorldObject>& objects, const Observation& seen,
+                                  SyntheticFrame* frame) const {
+  const bool point_times = config_.timing.lidar_point_time;
+  for (std::size_t i = 0; i < seen.returns.size(); ++i) {
+    const LidarReturn& r = seen.returns[i];
+    if (r.azimuth % config_.full_cloud_azimuth_step != 0 || r.range_m > config_.full_cloud_max_range_m) continue;
+    if (r.object < 0 && r.beam % 2 != 0) continue;  // ground: every second beam is plenty
+    frame->full_points.push_back(r.point);
+    if (point_times) frame->full_time_s.push_back(seen.time_s[i]);
+    float intensity = 15.f + static_cast<float>(r.beam % 4);
+    if (r.object >= 0) intensity = objects[static_cast<std::size_t>(r.object)].isPerson() ? 80.f : 45.f;
+    frame->full_intensity.push_back(intensity);
+  }
 }
 
 RejectionCounts gateFrames(const std::vector<PeopleCounts>& frames, const GateConfig& gate_config) {

@@ -21,6 +21,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <random>
 #include <vector>
 
 namespace thermal_lidar_calibration {
@@ -198,6 +199,21 @@ class SyntheticRig {
   };
   FrameWorld frameWorld(int index) const;
   SyntheticFrame renderWorld(const FrameWorld& world, int index, double stamp_s) const;
+  // renderWorld's steps. Which objects the detectors report (and frame->people), from the
+  // frame's detection stream:
+  struct Detected {
+    std::vector<char> in_cluster, in_mask;  // per object of the world
+  };
+  Detected detect(const FrameWorld& world, const Observation& seen, int index, std::mt19937_64& rng,
+                  SyntheticFrame* frame) const;
+  // The person mask (ids 1..N by increasing person id), its edge noise and false blobs from the
+  // frame's noise stream.
+  void drawMask(const std::vector<WorldObject>& objects, const cv::Mat& owners, const std::vector<char>& in_mask,
+                std::mt19937_64& rng, SyntheticFrame* frame) const;
+  // The whole cloud: `raw` keeps every return near enough, with ring and truth ids; `full_cloud`
+  // a thinned one for display.
+  void writeRawCloud(const std::vector<WorldObject>& objects, const Observation& seen, SyntheticFrame* frame) const;
+  void writeFullCloud(const std::vector<WorldObject>& objects, const Observation& seen, SyntheticFrame* frame) const;
   Observation observe(const FrameWorld& world, int index) const;
   std::vector<LidarReturn> castSweptScan(const FrameWorld& world) const;
   // The objects within kWorldCullM of the vehicle at drive time t_s, people first, then clutter,
