@@ -83,9 +83,8 @@ Scene::Scene(const SceneConfig& config, std::uint64_t seed)
     meander_wavelength_m_ = 35.0 + 20.0 * unit(meander_rng);
     meander_phase_ = 2.0 * M_PI * unit(meander_rng);
   }
+  // One stream for the path and the people, drawn in this order.
   std::mt19937_64 rng(seed ^ 0x5ce9e5ce9eULL);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  auto uniform = [&](double a, double b) { return a + (b - a) * unit(rng); };
 
   // Groups along the path, then the path: straight legs, a turn just after each group.
   const double drive_m = schedule_.arcLengthAt(config_.duration_s);
@@ -93,6 +92,14 @@ Scene::Scene(const SceneConfig& config, std::uint64_t seed)
   for (double gs = config_.first_group_m; gs < drive_m + 35.0; gs += config_.group_spacing_m) {
     group_s.push_back(gs);
   }
+  buildPath(group_s, field, rng);
+  placeGroups(group_s, rng);
+}
+
+void Scene::buildPath(const std::vector<double>& group_s, bool field, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  auto uniform = [&](double a, double b) { return a + (b - a) * unit(rng); };
+  const double drive_m = schedule_.arcLengthAt(config_.duration_s);
   std::vector<double> turn_start, turn_curvature, turn_length;
   double turn_sign = unit(rng) < 0.5 ? -1.0 : 1.0;
   for (const double gs : group_s) {
@@ -128,7 +135,11 @@ Scene::Scene(const SceneConfig& config, std::uint64_t seed)
     path_xy_.push_back(xy);
     path_heading_.push_back(heading);
   }
+}
 
+void Scene::placeGroups(const std::vector<double>& group_s, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  auto uniform = [&](double a, double b) { return a + (b - a) * unit(rng); };
   const int groups = static_cast<int>(group_s.size());
   std::vector<int> group_size(groups, 0);
   if (config_.people > 0) {

@@ -15,6 +15,7 @@
 #include <Eigen/Geometry>
 
 #include <cstdint>
+#include <random>
 #include <vector>
 
 namespace thermal_lidar_calibration {
@@ -95,6 +96,10 @@ class Scene {
   void headingAt(double s, double* heading_rad, double* rate_rad_per_m) const;
   // Curvature (1/m) the field profile adds at arc length s: a gentle meander.
   double meanderCurvature(double s) const;
+  // The constructor's steps, drawing from one stream in this order: the path (straight legs, a
+  // turn just after each group at arc lengths group_s), then the groups' people and clutter.
+  void buildPath(const std::vector<double>& group_s, bool field, std::mt19937_64& rng);
+  void placeGroups(const std::vector<double>& group_s, std::mt19937_64& rng);
   SceneConfig config_;
   DriveSchedule schedule_;
   std::vector<double> path_s_;           // arc length samples
