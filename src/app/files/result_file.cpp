@@ -85,35 +85,25 @@ void emitExtrinsic(YAML::Emitter& out, const Extrinsic& e) {
   emitVector(out, "quaternion_xyzw", xyzw, 4);
 }
 
-void writeResultFile(const std::string& path, const CalibrationResult& result,
-                     const ResultContext& context) {
-  YAML::Emitter out;
-  out.SetDoublePrecision(12);
-  out << YAML::BeginMap;
-  out << YAML::Key << "lidar_frame" << YAML::Value << context.lidar_frame;
-  out << YAML::Key << "camera_frame" << YAML::Value << context.camera_frame;
-  emitExtrinsic(out, result.extrinsic);
-  out << YAML::Key << "loss" << YAML::Value << result.loss;
-  out << YAML::Key << "pairs_used" << YAML::Value << result.pairs_used;
-  out << YAML::Key << "pairs_collected" << YAML::Value << result.pairs_collected;
-  if (context.pairing) {
-    // Issue 23: how many pairs each rule made, and how the association went.
-    const PairingSummary& p = *context.pairing;
-    out << YAML::Key << "pairs_by_rule" << YAML::Value << YAML::Flow << YAML::BeginMap;
-    out << YAML::Key << "counts" << YAML::Value << p.counts;
-    out << YAML::Key << "association" << YAML::Value << p.association << YAML::EndMap;
-    out << YAML::Key << "association" << YAML::Value << YAML::BeginMap;
-    out << YAML::Key << "pairing" << YAML::Value << toString(p.mode);
-    out << YAML::Key << "candidate_frames" << YAML::Value << p.candidates;
-    out << YAML::Key << "rounds" << YAML::Value << p.rounds;
-    out << YAML::Key << "converged" << YAML::Value << p.converged;
-    out << YAML::Key << "initial_extrinsic_used" << YAML::Value << p.initial_used;
-    if (!p.note.empty()) out << YAML::Key << "note" << YAML::Value << p.note;
-    out << YAML::EndMap;
-  }
-  out << YAML::Key << "loss_bilinear" << YAML::Value << result.loss_bilinear;
-  out << YAML::Key << "stopped_early" << YAML::Value << result.stopped;
-  // Issue 21: the camera's time offset the extrinsic goes with (0 and none: timing ignored).
+namespace {
+
+// Issue 23: how many pairs each rule made, and how the association went.
+void emitPairing(YAML::Emitter& out, const PairingSummary& p) {
+  out << YAML::Key << "pairs_by_rule" << YAML::Value << YAML::Flow << YAML::BeginMap;
+  out << YAML::Key << "counts" << YAML::Value << p.counts;
+  out << YAML::Key << "association" << YAML::Value << p.association << YAML::EndMap;
+  out << YAML::Key << "association" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "pairing" << YAML::Value << toString(p.mode);
+  out << YAML::Key << "candidate_frames" << YAML::Value << p.candidates;
+  out << YAML::Key << "rounds" << YAML::Value << p.rounds;
+  out << YAML::Key << "converged" << YAML::Value << p.converged;
+  out << YAML::Key << "initial_extrinsic_used" << YAML::Value << p.initial_used;
+  if (!p.note.empty()) out << YAML::Key << "note" << YAML::Value << p.note;
+  out << YAML::EndMap;
+}
+
+// Issue 21: the camera's time offset the extrinsic goes with (0 and none: timing ignored).
+void emitTiming(YAML::Emitter& out, const CalibrationResult& result) {
   out << YAML::Key << "time_offset_s" << YAML::Value << result.time_offset_s;
   out << YAML::Key << "time_offset_mode" << YAML::Value << toString(result.time_offset_mode);
   if (!result.time_offset_note.empty()) {
@@ -133,7 +123,11 @@ void writeResultFile(const std::string& path, const CalibrationResult& result,
     }
     out << YAML::EndSeq << YAML::EndMap;
   }
+}
 
+// How the fit was made: Algorithm 1's or 2's result before refinement, the settings that decide
+// it, the run's cost, and the truth it is compared with.
+void emitRun(YAML::Emitter& out, const CalibrationResult& result, const ResultContext& context) {
   out << YAML::Key << "evolution" << YAML::Value << YAML::BeginMap;
   emitExtrinsic(out, result.evolution_extrinsic);
   out << YAML::Key << "loss" << YAML::Value << result.evolution_loss;
@@ -158,9 +152,10 @@ void writeResultFile(const std::string& path, const CalibrationResult& result,
     out << YAML::Key << "loss" << YAML::Value << t.truth_loss;
     out << YAML::EndMap;
   }
+}
 
-  if (context.quality) emitQuality(out, *context.quality);
-
+// Each pair's stamp, loss and inlier flag, in the order the pairs were kept.
+void emitPairs(YAML::Emitter& out, const CalibrationResult& result, const ResultContext& context) {
   out << YAML::Key << "pairs" << YAML::Value << YAML::BeginSeq;
   const std::size_t n = std::max(result.pair_losses.size(), result.inliers.size());
   for (std::size_t i = 0; i < n; ++i) {
@@ -178,18 +173,10 @@ void writeResultFile(const std::string& path, const CalibrationResult& result,
     out << YAML::EndMap;
   }
   out << YAML::EndSeq;
+}
 
-  out << YAML::Key << "parameters" << YAML::Value << YAML::BeginMap;
-  for (const auto& kv : describeCoreParameters(context.parameters)) {
-    out << YAML::Key << kv.first << YAML::Value << kv.second;
-  }
-  out << YAML::EndMap;
-  out << YAML::EndMap;
-  if (!out.good()) {
-    throw std::runtime_error("cannot write result file " + path + ": " + out.GetLastError());
-  }
-
-  // Write next to the target and rename, so a reader never sees half a file.
+// Written next to the target and renamed, so a reader never sees half a file.
+void writeFileAtomically(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".tmp";
   {
     std::ofstream file(tmp);
@@ -197,7 +184,7 @@ void writeResultFile(const std::string& path, const CalibrationResult& result,
       throw std::runtime_error("cannot write result file " + path + ": " + std::strerror(errno));
     }
     file << "# thermal_lidar_calibration result: p_camera = R * p_lidar + t (metres, radians)\n";
-    file << out.c_str() << "\n";
+    file << text << "\n";
     file.close();
     if (!file) {
       std::remove(tmp.c_str());
@@ -209,6 +196,38 @@ void writeResultFile(const std::string& path, const CalibrationResult& result,
     std::remove(tmp.c_str());
     throw std::runtime_error("cannot write result file " + path + ": " + reason);
   }
+}
+
+}  // namespace
+
+void writeResultFile(const std::string& path, const CalibrationResult& result,
+                     const ResultContext& context) {
+  YAML::Emitter out;
+  out.SetDoublePrecision(12);
+  out << YAML::BeginMap;
+  out << YAML::Key << "lidar_frame" << YAML::Value << context.lidar_frame;
+  out << YAML::Key << "camera_frame" << YAML::Value << context.camera_frame;
+  emitExtrinsic(out, result.extrinsic);
+  out << YAML::Key << "loss" << YAML::Value << result.loss;
+  out << YAML::Key << "pairs_used" << YAML::Value << result.pairs_used;
+  out << YAML::Key << "pairs_collected" << YAML::Value << result.pairs_collected;
+  if (context.pairing) emitPairing(out, *context.pairing);
+  out << YAML::Key << "loss_bilinear" << YAML::Value << result.loss_bilinear;
+  out << YAML::Key << "stopped_early" << YAML::Value << result.stopped;
+  emitTiming(out, result);
+  emitRun(out, result, context);
+  if (context.quality) emitQuality(out, *context.quality);
+  emitPairs(out, result, context);
+  out << YAML::Key << "parameters" << YAML::Value << YAML::BeginMap;
+  for (const auto& kv : describeCoreParameters(context.parameters)) {
+    out << YAML::Key << kv.first << YAML::Value << kv.second;
+  }
+  out << YAML::EndMap;
+  out << YAML::EndMap;
+  if (!out.good()) {
+    throw std::runtime_error("cannot write result file " + path + ": " + out.GetLastError());
+  }
+  writeFileAtomically(path, out.c_str());
 }
 
 std::optional<double> readTimeOffset(const std::string& path, bool point_times) {
