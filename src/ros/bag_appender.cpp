@@ -116,6 +116,71 @@ bool writeAt(int fd, const std::string& bytes, std::uint64_t offset) {
   return true;
 }
 
+// One pair's messages as one chunk: a connection record for each topic new to the bag, then the
+// message data records; per connection, the (time, offset in the chunk) of its messages for the
+// index data records.
+struct NewChunk {
+  std::string chunk;
+  std::string new_connections;               // the connection records of the new topics
+  std::map<std::string, std::uint32_t> ids;  // topic -> connection id, old and new
+  std::uint32_t next_id = 0;
+  std::map<std::uint32_t, std::pair<std::uint32_t, std::string>> entries;  // id -> count, entries
+  ros::Time start, end;
+};
+
+NewChunk buildChunk(const std::vector<BagAppender::Message>& group, std::map<std::string, std::uint32_t> ids,
+                    std::uint32_t next_id) {
+  NewChunk c;
+  c.start = c.end = group.front().time;
+  for (const BagAppender::Message& m : group) {
+    auto it = ids.find(m.topic);
+    if (it == ids.end()) {
+      it = ids.emplace(m.topic, next_id++).first;
+      const ros::M_string connection = {{"topic", m.topic},
+                                        {"type", m.datatype},
+                                        {"md5sum", m.md5sum},
+                                        {"message_definition", m.definition}};
+      boost::shared_array<std::uint8_t> data;
+      std::uint32_t data_len = 0;
+      ros::Header::write(connection, data, data_len);
+      std::string record;
+      appendRecord(record,
+                   {{rosbag::OP_FIELD_NAME, opBytes(rosbag::OP_CONNECTION)},
+                    {rosbag::TOPIC_FIELD_NAME, m.topic},
+                    {rosbag::CONNECTION_FIELD_NAME, bytesOf(it->second)}},
+                   std::string(reinterpret_cast<const char*>(data.get()), data_len));
+      c.chunk += record;  // rosbag reindex finds connections in the chunks
+      c.new_connections += record;
+    }
+    auto& [count, index] = c.entries[it->second];
+    ++count;
+    index += timeBytes(m.time) + bytesOf(static_cast<std::uint32_t>(c.chunk.size()));
+    appendRecord(c.chunk,
+                 {{rosbag::OP_FIELD_NAME, opBytes(rosbag::OP_MSG_DATA)},
+                  {rosbag::CONNECTION_FIELD_NAME, bytesOf(it->second)},
+                  {rosbag::TIME_FIELD_NAME, timeBytes(m.time)}},
+                 std::string(reinterpret_cast<const char*>(m.bytes.data()), m.bytes.size()));
+    c.start = std::min(c.start, m.time);
+    c.end = std::max(c.end, m.time);
+  }
+  c.ids = std::move(ids);
+  c.next_id = next_id;
+  return c;
+}
+
+// LZ4 as rosbag does. False when LZ4 cannot shrink the chunk: it is stored as it is. (roslz4
+// takes the input as char* but does not write it.)
+bool compressLz4(std::string& chunk, std::string* compressed) {
+  compressed->assign(chunk.size() + chunk.size() / 100 + 1024, '\0');
+  auto compressed_len = static_cast<unsigned int>(compressed->size());
+  const bool lz4 = roslz4_buffToBuffCompress(&chunk[0], static_cast<unsigned int>(chunk.size()),
+                                             &(*compressed)[0], &compressed_len,
+                                             kLz4BlockSizeId) == ROSLZ4_OK &&
+                   compressed_len < chunk.size();
+  compressed->resize(compressed_len);
+  return lz4;
+}
+
 }  // namespace
 
 BagAppender::BagAppender(std::string path) : path_(std::move(path)) {
@@ -181,56 +246,14 @@ std::string BagAppender::fileHeader(std::uint64_t index_pos, std::uint32_t chunk
 
 void BagAppender::append(const std::vector<Message>& group) {
   if (group.empty()) return;
-  // The chunk: a connection record for each topic new to the bag, then the message data records;
-  // per connection, the (time, offset in the chunk) of its messages for the index data records.
-  std::string chunk, new_connections;
-  std::map<std::string, std::uint32_t> ids = connection_ids_;
-  std::uint32_t next_id = next_connection_id_;
-  std::map<std::uint32_t, std::pair<std::uint32_t, std::string>> entries;  // id -> count, entries
-  ros::Time start = group.front().time, end = group.front().time;
-  for (const Message& m : group) {
-    auto it = ids.find(m.topic);
-    if (it == ids.end()) {
-      it = ids.emplace(m.topic, next_id++).first;
-      const ros::M_string connection = {{"topic", m.topic},
-                                        {"type", m.datatype},
-                                        {"md5sum", m.md5sum},
-                                        {"message_definition", m.definition}};
-      boost::shared_array<std::uint8_t> data;
-      std::uint32_t data_len = 0;
-      ros::Header::write(connection, data, data_len);
-      std::string record;
-      appendRecord(record,
-                   {{rosbag::OP_FIELD_NAME, opBytes(rosbag::OP_CONNECTION)},
-                    {rosbag::TOPIC_FIELD_NAME, m.topic},
-                    {rosbag::CONNECTION_FIELD_NAME, bytesOf(it->second)}},
-                   std::string(reinterpret_cast<const char*>(data.get()), data_len));
-      chunk += record;  // rosbag reindex finds connections in the chunks
-      new_connections += record;
-    }
-    auto& [count, index] = entries[it->second];
-    ++count;
-    index += timeBytes(m.time) + bytesOf(static_cast<std::uint32_t>(chunk.size()));
-    appendRecord(chunk,
-                 {{rosbag::OP_FIELD_NAME, opBytes(rosbag::OP_MSG_DATA)},
-                  {rosbag::CONNECTION_FIELD_NAME, bytesOf(it->second)},
-                  {rosbag::TIME_FIELD_NAME, timeBytes(m.time)}},
-                 std::string(reinterpret_cast<const char*>(m.bytes.data()), m.bytes.size()));
-    start = std::min(start, m.time);
-    end = std::max(end, m.time);
+  NewChunk c = buildChunk(group, connection_ids_, next_connection_id_);
+  if (c.chunk.size() > std::numeric_limits<std::uint32_t>::max() / 2) {
+    fail(path_, "a pair of " + std::to_string(c.chunk.size()) + " bytes is too large for one chunk");
   }
-  if (chunk.size() > std::numeric_limits<std::uint32_t>::max() / 2) {
-    fail(path_, "a pair of " + std::to_string(chunk.size()) + " bytes is too large for one chunk");
-  }
-
-  // LZ4 as rosbag does; a chunk LZ4 cannot shrink is stored as it is.
-  std::string compressed(chunk.size() + chunk.size() / 100 + 1024, '\0');
-  auto compressed_len = static_cast<unsigned int>(compressed.size());
-  const bool lz4 = roslz4_buffToBuffCompress(&chunk[0], static_cast<unsigned int>(chunk.size()),
-                                             &compressed[0], &compressed_len,
-                                             kLz4BlockSizeId) == ROSLZ4_OK &&
-                   compressed_len < chunk.size();
-  compressed.resize(compressed_len);
+  std::string compressed;
+  const bool lz4 = compressLz4(c.chunk, &compressed);
+  const std::string& chunk = c.chunk;
+  const auto& entries = c.entries;
 
   // What goes where the old index was: the chunk, its index data records, then the new index.
   const std::uint64_t chunk_pos = exists_ ? index_pos_ : fileHeader(0, 0).size();
@@ -255,16 +278,16 @@ void BagAppender::append(const std::vector<Message>& group) {
                {{rosbag::OP_FIELD_NAME, opBytes(rosbag::OP_CHUNK_INFO)},
                 {rosbag::VER_FIELD_NAME, bytesOf(rosbag::CHUNK_INFO_VERSION)},
                 {rosbag::CHUNK_POS_FIELD_NAME, bytesOf(chunk_pos)},
-                {rosbag::START_TIME_FIELD_NAME, timeBytes(start)},
-                {rosbag::END_TIME_FIELD_NAME, timeBytes(end)},
+                {rosbag::START_TIME_FIELD_NAME, timeBytes(c.start)},
+                {rosbag::END_TIME_FIELD_NAME, timeBytes(c.end)},
                 {rosbag::COUNT_FIELD_NAME, bytesOf(static_cast<std::uint32_t>(entries.size()))}},
                connection_counts);
   const std::uint64_t new_index_pos = chunk_pos + tail.size();
-  tail += connection_records_ + new_connections + chunk_infos_ + chunk_info;
+  tail += connection_records_ + c.new_connections + chunk_infos_ + chunk_info;
 
   const std::string old_header = fileHeader(index_pos_, chunk_count_);
   const std::uint32_t connections_before = connection_count_;
-  connection_count_ += next_id - next_connection_id_;
+  connection_count_ += c.next_id - next_connection_id_;
   const std::string header = fileHeader(new_index_pos, chunk_count_ + 1);
   try {
     if (exists_) {
@@ -277,9 +300,9 @@ void BagAppender::append(const std::vector<Message>& group) {
     throw;
   }
   exists_ = true;
-  connection_ids_ = std::move(ids);
-  next_connection_id_ = next_id;
-  connection_records_ += new_connections;
+  connection_ids_ = c.ids;
+  next_connection_id_ = c.next_id;
+  connection_records_ += c.new_connections;
   chunk_infos_ += chunk_info;
   ++chunk_count_;
   index_pos_ = new_index_pos;
