@@ -183,12 +183,8 @@ void addDriftRows(ParameterTable<CoreParameters>& t) {
              "what the window's own pose fit gains");
 }
 
-}  // namespace
-
-template <>
-ParameterTable<CoreParameters> makeParameterTable() {
-  ParameterTable<CoreParameters> t;
-  auto top = t.fields();
+// Table 1's Algorithms 1 and 2, and the local refinement after them.
+void addOptimizerRows(ParameterTable<CoreParameters>& t) {
   auto calibration = t.group<CalibrationConfig>(
       [](CoreParameters& p) -> CalibrationConfig& { return p.calibration; });
   auto evolution = t.group<EvolutionConfig>(
@@ -197,22 +193,6 @@ ParameterTable<CoreParameters> makeParameterTable() {
       [](CoreParameters& p) -> OutlierConfig& { return p.calibration.outlier; });
   auto refine = t.group<RefineConfig>(
       [](CoreParameters& p) -> RefineConfig& { return p.calibration.refine; });
-  auto gate = t.group<GateConfig>([](CoreParameters& p) -> GateConfig& { return p.gate; });
-
-  t.section("Algorithm and run control");
-  calibration.integerChoice(
-      "algorithm", &CalibrationConfig::algorithm,
-      {{1, Algorithm::kPlain}, {2, Algorithm::kOutlierRejection}},
-      "must be 1 (plain evolution) or 2 (with outlier rejection)",
-      "1 = Algorithm 1 (evolution only), 2 = Algorithm 2 (outlier rejection)");
-  refine.choice("refine", &RefineConfig::mode,
-                {{"none", RefineMode::kNone}, {"local", RefineMode::kLocal}},
-                "must be 'none' or 'local'", "local derivative-free refinement after the evolution");
-  calibration.integer("seed", &CalibrationConfig::seed, {0, std::numeric_limits<long long>::max()},
-                      "", "random seed: same seed + same data = same result");
-  calibration.integer("num_threads", &CalibrationConfig::num_threads, kConfigRange, "",
-                      "loss threads, 0 = all cores (the result does not depend on it)");
-
   t.section("Algorithm 1: evolutionary search (Table 1)");
   evolution.integer("population_size", &EvolutionConfig::population_size, kConfigRange, "",
                     "N_pop, individuals per generation");
@@ -272,6 +252,35 @@ ParameterTable<CoreParameters> makeParameterTable() {
   refine.boolean("refine_reselect_inliers", &RefineConfig::reselect_inliers,
                  "after refining, re-select inliers among all pairs (Eq. 1 <= threshold_sample_px) "
                  "and refine again until stable");
+}
+
+}  // namespace
+
+template <>
+ParameterTable<CoreParameters> makeParameterTable() {
+  ParameterTable<CoreParameters> t;
+  auto top = t.fields();
+  auto calibration = t.group<CalibrationConfig>(
+      [](CoreParameters& p) -> CalibrationConfig& { return p.calibration; });
+  auto refine = t.group<RefineConfig>(
+      [](CoreParameters& p) -> RefineConfig& { return p.calibration.refine; });
+  auto gate = t.group<GateConfig>([](CoreParameters& p) -> GateConfig& { return p.gate; });
+
+  t.section("Algorithm and run control");
+  calibration.integerChoice(
+      "algorithm", &CalibrationConfig::algorithm,
+      {{1, Algorithm::kPlain}, {2, Algorithm::kOutlierRejection}},
+      "must be 1 (plain evolution) or 2 (with outlier rejection)",
+      "1 = Algorithm 1 (evolution only), 2 = Algorithm 2 (outlier rejection)");
+  refine.choice("refine", &RefineConfig::mode,
+                {{"none", RefineMode::kNone}, {"local", RefineMode::kLocal}},
+                "must be 'none' or 'local'", "local derivative-free refinement after the evolution");
+  calibration.integer("seed", &CalibrationConfig::seed, {0, std::numeric_limits<long long>::max()},
+                      "", "random seed: same seed + same data = same result");
+  calibration.integer("num_threads", &CalibrationConfig::num_threads, kConfigRange, "",
+                      "loss threads, 0 = all cores (the result does not depend on it)");
+
+  addOptimizerRows(t);
 
   t.section("Frame gating and pairing (Section 3.1)");
   gate.integer("max_people", &GateConfig::max_people, {1, 1000}, "",
