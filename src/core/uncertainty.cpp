@@ -87,6 +87,34 @@ void summarise(Uncertainty& u) {
   }
 }
 
+// Throws std::invalid_argument on a bad config, fewer than 3 pairs, an index past the
+// evaluator's pairs, or a time offset to refine with an evaluator that has none.
+void requireUsableInput(const LossEvaluator& loss, const std::vector<std::size_t>& pairs,
+                        const UncertaintyConfig& config, const std::optional<TimeOffsetConfig>& timing) {
+  config.validate();
+  if (pairs.size() < 3) {
+    throw std::invalid_argument("uncertainty: needs at least 3 pairs, got " +
+                                std::to_string(pairs.size()));
+  }
+  for (std::size_t i : pairs) {
+    if (i >= loss.pairCount()) throw std::invalid_argument("uncertainty: pair index out of range");
+  }
+  if (timing && !loss.config().time_offset_s) {
+    throw std::invalid_argument("uncertainty: a time offset to refine needs an evaluator with one");
+  }
+}
+
+// Each resample's refinement: the calibration's local refinement with the bootstrap's steps.
+RefineConfig resampleRefineConfig(const UncertaintyConfig& config) {
+  RefineConfig refine;
+  refine.initial_step_rot_rad = config.initial_step_rot_rad;
+  refine.initial_step_trans_m = config.initial_step_trans_m;
+  refine.min_step_rot_rad = config.min_step_rot_rad;
+  refine.min_step_trans_m = config.min_step_trans_m;
+  refine.max_evaluations = config.max_evaluations;
+  return refine;
+}
+
 }  // namespace
 
 UncertaintyConfig UncertaintyConfig::quick() {
@@ -142,24 +170,9 @@ Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& esti
                                 const std::optional<TimeOffsetConfig>& timing,
                                 const VerticalCentringOutcome* centring) {
   const auto started = std::chrono::steady_clock::now();
-  config.validate();
-  if (pairs.size() < 3) {
-    throw std::invalid_argument("uncertainty: needs at least 3 pairs, got " +
-                                std::to_string(pairs.size()));
-  }
-  for (std::size_t i : pairs) {
-    if (i >= loss.pairCount()) throw std::invalid_argument("uncertainty: pair index out of range");
-  }
-  if (timing && !loss.config().time_offset_s) {
-    throw std::invalid_argument("uncertainty: a time offset to refine needs an evaluator with one");
-  }
+  requireUsableInput(loss, pairs, config, timing);
   const LossEvaluator bilinear = loss.withPixelRule(PixelRule::kBilinear);
-  RefineConfig refine;
-  refine.initial_step_rot_rad = config.initial_step_rot_rad;
-  refine.initial_step_trans_m = config.initial_step_trans_m;
-  refine.min_step_rot_rad = config.min_step_rot_rad;
-  refine.min_step_trans_m = config.min_step_trans_m;
-  refine.max_evaluations = config.max_evaluations;
+  const RefineConfig refine = resampleRefineConfig(config);
   // One thread per resample: a resample's refinement evaluates 12 probes at a time, too few to
   // share well, while the resamples are independent.
   const LocalRefinement refinement(bilinear, refine, 1);
