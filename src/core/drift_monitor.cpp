@@ -156,6 +156,15 @@ std::optional<DriftRecord> DriftMonitor::addPair(CalibrationPair pair) {
   const DriftState before = machine_.state();
   record.state = machine_.onTest(changed, record.stamp_s);
 
+  followTest(record, changed, before);
+
+  record.seconds = elapsed();
+  seconds_ += record.seconds;
+  last_record_ = record;
+  return record;
+}
+
+void DriftMonitor::followTest(const DriftRecord& record, bool changed, DriftState before) {
   if (changed) {
     if (settling_) {
       // A change against the early update: start over from this window.
@@ -187,11 +196,6 @@ std::optional<DriftRecord> DriftMonitor::addPair(CalibrationPair pair) {
   } else if (settling_ && !candidate_final) {
     fitCandidate(reference_);
   }
-
-  record.seconds = elapsed();
-  seconds_ += record.seconds;
-  last_record_ = record;
-  return record;
 }
 
 void DriftMonitor::locateChange(const Extrinsic& fit) {

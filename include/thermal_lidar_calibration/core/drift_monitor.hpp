@@ -124,6 +124,9 @@ class DriftMonitor {
   // The held pairs' image offsets against reference_, worked out again after it changed.
   void updateOffsets();
   std::vector<CalibrationPair> pairsSince(std::uint64_t seq, std::size_t at_most) const;
+  // After a window's test (`changed`: it counts as an extrinsic change; `before`: the state
+  // before it): start over, confirm, place the change and fit the candidate as the state says.
+  void followTest(const DriftRecord& record, bool changed, DriftState before);
   // Places the change among the held pairs: where they start fitting `fit` better than the
   // reference (change_point.hpp).
   void locateChange(const Extrinsic& fit);
