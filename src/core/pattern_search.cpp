@@ -5,6 +5,50 @@
 
 namespace thermal_lidar_calibration {
 
+namespace {
+
+// Exploratory probes: +-step along each free parameter [first, last), evaluated together.
+std::vector<Eigen::VectorXd> exploratoryProbes(const Eigen::VectorXd& x, const Eigen::VectorXd& step,
+                                               int first, int last) {
+  std::vector<Eigen::VectorXd> probes;
+  for (int k = first; k < last; ++k) {
+    for (double sign : {1.0, -1.0}) {
+      Eigen::VectorXd y = x;
+      y[k] += sign * step[k];
+      probes.push_back(y);
+    }
+  }
+  return probes;
+}
+
+// What the probes' losses say against fx: the move along every improving axis, and the best
+// single probe (-1 when none improves) with its loss.
+struct ProbeOutcome {
+  Eigen::VectorXd combined;
+  int best_probe = -1;
+  double best_loss = 0.0;
+};
+ProbeOutcome readProbes(const std::vector<double>& losses, const Eigen::VectorXd& step, double fx,
+                        int first, int last) {
+  ProbeOutcome out;
+  out.combined = Eigen::VectorXd::Zero(step.size());
+  out.best_loss = fx;
+  for (int k = first; k < last; ++k) {
+    const int probe = 2 * (k - first);
+    const double plus = losses[probe], minus = losses[probe + 1];
+    if (std::min(plus, minus) < fx) out.combined[k] = plus <= minus ? step[k] : -step[k];
+    for (int j = 0; j < 2; ++j) {
+      if (losses[probe + j] < out.best_loss) {
+        out.best_loss = losses[probe + j];
+        out.best_probe = probe + j;
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 PatternSearchOutcome patternSearch(const Eigen::VectorXd& start, const PatternSearchConfig& config,
                                    const BatchLoss& loss, const SearchCallback& callback) {
   const int n = static_cast<int>(start.size());
@@ -47,30 +91,12 @@ PatternSearchOutcome patternSearch(const Eigen::VectorXd& start, const PatternSe
       break;
     }
     ++out.iterations;
-    // Exploratory probes: +-step along each free parameter, evaluated together.
-    std::vector<Eigen::VectorXd> probes;
-    for (int k = first; k < last; ++k) {
-      for (double sign : {1.0, -1.0}) {
-        Eigen::VectorXd y = x;
-        y[k] += sign * step[k];
-        probes.push_back(y);
-      }
-    }
+    const std::vector<Eigen::VectorXd> probes = exploratoryProbes(x, step, first, last);
     evaluate(probes);
-    Eigen::VectorXd combined = Eigen::VectorXd::Zero(n);
-    int best_probe = -1;
-    double best_loss = fx;
-    for (int k = first; k < last; ++k) {
-      const int probe = 2 * (k - first);
-      const double plus = losses[probe], minus = losses[probe + 1];
-      if (std::min(plus, minus) < fx) combined[k] = plus <= minus ? step[k] : -step[k];
-      for (int j = 0; j < 2; ++j) {
-        if (losses[probe + j] < best_loss) {
-          best_loss = losses[probe + j];
-          best_probe = probe + j;
-        }
-      }
-    }
+    const ProbeOutcome probed = readProbes(losses, step, fx, first, last);
+    const Eigen::VectorXd& combined = probed.combined;
+    const int best_probe = probed.best_probe;
+    double best_loss = probed.best_loss;
     if (best_probe < 0) {
       step *= 0.5;  // nothing improves at this scale: look closer
     } else {
