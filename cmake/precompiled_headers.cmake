@@ -36,19 +36,23 @@ function(tlc_precompile)
 endfunction()
 
 # The ROS-free libraries: one each, their flags differ (-O2 / -O3, OpenMP, PCL's definitions).
-foreach(lib core synthetic detection app)
+foreach(lib core synthetic detection app detection_tool)
   tlc_precompile(HEADERS ${TLC_PCH_ROS_FREE} TARGETS thermal_lidar_calibration_${lib})
 endforeach()
 # The loss kernels compile with their own floating-point flags (-fno-math-errno changes a
 # predefined macro the headers read): they parse their headers themselves.
 set_source_files_properties(${PROJECT_SOURCE_DIR}/src/core/loss_kernels.cpp PROPERTIES
   SKIP_PRECOMPILE_HEADERS ON)
-# The ROS side: the adapters' library and what links it with the same flags.
-tlc_precompile(HEADERS ${TLC_PCH_ROS_FREE} ${TLC_PCH_ROS}
-  TARGETS thermal_lidar_calibration_ros thermal_lidar_calibration_synthetic_bag
-          thermal_lidar_calibration_nodelets)
+# The ROS side: the adapters' library and the libraries over it (node/, tools/, the nodelets, the
+# generator), one precompiled header each: a shared library defines <target>_EXPORTS, so one
+# cannot reuse another's (GCC: "not used because thermal_lidar_calibration_ros_EXPORTS not
+# defined").
+foreach(lib ros node tools nodelets synthetic_bag)
+  tlc_precompile(HEADERS ${TLC_PCH_ROS_FREE} ${TLC_PCH_ROS} TARGETS thermal_lidar_calibration_${lib})
+endforeach()
 
-# The tests (gtest): those that link the ROS adapters, and those that link only ROS-free parts.
+# The tests (gtest): those that link the ROS adapters (directly or through node/, tools/), and those
+# that link only ROS-free parts.
 set(ros_tests "")
 set(ros_free_tests "")
 foreach(dir ${PROJECT_SOURCE_DIR} ${PROJECT_SOURCE_DIR}/test)
@@ -58,7 +62,7 @@ foreach(dir ${PROJECT_SOURCE_DIR} ${PROJECT_SOURCE_DIR}/test)
       continue()
     endif()
     get_target_property(links ${target} LINK_LIBRARIES)
-    if("thermal_lidar_calibration_ros" IN_LIST links)
+    if(links MATCHES "thermal_lidar_calibration_(ros|node|tools|synthetic_bag)(;|$)")
       list(APPEND ros_tests ${target})
     elseif(links MATCHES "thermal_lidar_calibration_")
       list(APPEND ros_free_tests ${target})
