@@ -151,10 +151,19 @@ bool resolvable(const LossEvaluator& nearest, const std::vector<CalibrationPair>
     }
   }
   char note[320];
-  std::snprintf(note, sizeof(note),
-                "not estimated: these pairs resolve the time offset only to +-%.3g ms "
-                "(time_offset_max_resolution_ms %.3g), so it stays at %+.1f ms",
-                r.resolution_ms, config.time_offset.max_resolution_ms, 1000.0 * result.time_offset_s);
+  if (std::isfinite(r.resolution_ms)) {
+    std::snprintf(note, sizeof(note),
+                  "not estimated: these pairs resolve the time offset only to +-%.3g ms "
+                  "(time_offset_max_resolution_ms %.3g), so it stays at %+.1f ms",
+                  r.resolution_ms, config.time_offset.max_resolution_ms, 1000.0 * result.time_offset_s);
+  } else {
+    // Every pair's people move alike (straight steady driving past people who stand): the offset
+    // and the translation along the travel are one unknown, not a wide one.
+    std::snprintf(note, sizeof(note),
+                  "not estimated: these pairs cannot tell the time offset from the translation along the travel, "
+                  "so it stays at %+.1f ms",
+                  1000.0 * result.time_offset_s);
+  }
   result.time_offset_note = note;
   result.time_offset_mode = TimeOffsetMode::kFixed;
   return false;
