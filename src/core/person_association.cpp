@@ -14,24 +14,6 @@
 namespace thermal_lidar_calibration {
 namespace {
 
-template <typename T>
-cv::Mat regionsFromIds(const cv::Mat& mask, int& count) {
-  std::vector<int> id_of(static_cast<std::size_t>(1) << (8 * sizeof(T)), 0);
-  for (int r = 0; r < mask.rows; ++r) {
-    const T* row = mask.ptr<T>(r);
-    for (int c = 0; c < mask.cols; ++c) id_of[row[c]] = row[c] != 0 ? 1 : 0;
-  }
-  count = 0;
-  for (int& id : id_of) id = id != 0 ? ++count : 0;  // increasing value -> 1..n
-  cv::Mat regions(mask.size(), CV_16UC1);
-  for (int r = 0; r < mask.rows; ++r) {
-    const T* row = mask.ptr<T>(r);
-    std::uint16_t* out = regions.ptr<std::uint16_t>(r);
-    for (int c = 0; c < mask.cols; ++c) out[c] = static_cast<std::uint16_t>(id_of[row[c]]);
-  }
-  return regions;
-}
-
 // The region a pixel shows, or the nearest one within `tolerance_px` (the first in scan order
 // among equally near ones); 0 for none.
 int regionAt(const cv::Mat& regions, int u, int v, double tolerance_px) {
@@ -82,26 +64,6 @@ const ParameterRanges<AssociationConfig>& AssociationConfig::ranges() {
 }
 
 void AssociationConfig::validate() const { ranges().check(*this); }
-
-cv::Mat personRegions(const cv::Mat& mask, int* count) {
-  if (mask.type() != CV_8UC1 && mask.type() != CV_16UC1) {
-    throw std::invalid_argument("personRegions: the person mask must be CV_8UC1 or CV_16UC1, got OpenCV type " +
-                                cv::typeToString(mask.type()));
-  }
-  int n = 0;
-  cv::Mat regions = mask.depth() == CV_8U ? regionsFromIds<std::uint8_t>(mask, n)
-                                          : regionsFromIds<std::uint16_t>(mask, n);
-  if (n == 1) {
-    // One shared value: a binary mask, whose people are its 8-connected components
-    // (countMaskPeople counts them the same way).
-    cv::Mat components;
-    n = cv::connectedComponents(mask != 0, components, 8, CV_32S) - 1;
-    if (n > 65535) throw std::invalid_argument("personRegions: more than 65535 regions in the mask");
-    components.convertTo(regions, CV_16U);
-  }
-  if (count) *count = n;
-  return regions;
-}
 
 FrameAssociation associateClusters(const CameraModel& camera, const cv::Mat& regions,
                                    const std::vector<Eigen::Vector3f>& points,

@@ -37,20 +37,63 @@ int distinctNonZero(const cv::Mat& mask, int& single_value) {
   return distinct;
 }
 
+int distinctValues(const cv::Mat& mask, int& single_value) {
+  return mask.depth() == CV_8U ? distinctNonZero<std::uint8_t>(mask, single_value)
+                               : distinctNonZero<std::uint16_t>(mask, single_value);
+}
+
+// A mask whose person pixels share one value (a binary mask): its people are its 8-connected
+// components, labelled 1..n in `components` (CV_32S); returns n.
+int binaryComponents(const cv::Mat& mask, cv::Mat& components) {
+  return cv::connectedComponents(mask != 0, components, 8, CV_32S) - 1;  // label 0 is the background
+}
+
+// Distinct non-zero ids as regions 1..n in increasing id order (CV_16UC1).
+template <typename T>
+cv::Mat regionsFromIds(const cv::Mat& mask) {
+  std::vector<int> id_of(static_cast<std::size_t>(1) << (8 * sizeof(T)), 0);
+  for (int r = 0; r < mask.rows; ++r) {
+    const T* row = mask.ptr<T>(r);
+    for (int c = 0; c < mask.cols; ++c) id_of[row[c]] = row[c] != 0 ? 1 : 0;
+  }
+  int count = 0;
+  for (int& id : id_of) id = id != 0 ? ++count : 0;
+  cv::Mat regions(mask.size(), CV_16UC1);
+  for (int r = 0; r < mask.rows; ++r) {
+    const T* row = mask.ptr<T>(r);
+    std::uint16_t* out = regions.ptr<std::uint16_t>(r);
+    for (int c = 0; c < mask.cols; ++c) out[c] = static_cast<std::uint16_t>(id_of[row[c]]);
+  }
+  return regions;
+}
+
 }  // namespace
 
 int countMaskPeople(const cv::Mat& mask) {
   requireMaskType(mask, "countMaskPeople");
   if (mask.empty()) return 0;
   int single_value = 0;
-  const int distinct = mask.depth() == CV_8U ? distinctNonZero<std::uint8_t>(mask, single_value)
-                                             : distinctNonZero<std::uint16_t>(mask, single_value);
+  const int distinct = distinctValues(mask, single_value);
   if (distinct != 1) return distinct;
-  // One shared value: a binary mask; people are its 8-connected components.
-  cv::Mat binary = mask != 0;  // CV_8UC1, 255 on person pixels
   cv::Mat components;
-  const int labels = cv::connectedComponents(binary, components, 8, CV_32S);
-  return labels - 1;  // label 0 is the background
+  return binaryComponents(mask, components);
+}
+
+cv::Mat personRegions(const cv::Mat& mask, int* count) {
+  requireMaskType(mask, "personRegions");
+  int single_value = 0;
+  int n = mask.empty() ? 0 : distinctValues(mask, single_value);
+  cv::Mat regions;
+  if (n == 1) {
+    cv::Mat components;
+    n = binaryComponents(mask, components);
+    if (n > 65535) throw std::invalid_argument("personRegions: more than 65535 regions in the mask");
+    components.convertTo(regions, CV_16U);
+  } else {
+    regions = mask.depth() == CV_8U ? regionsFromIds<std::uint8_t>(mask) : regionsFromIds<std::uint16_t>(mask);
+  }
+  if (count) *count = n;
+  return regions;
 }
 
 cv::Mat binarizeMask(const cv::Mat& mask) {

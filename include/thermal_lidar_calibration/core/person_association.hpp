@@ -11,6 +11,7 @@
 #include "thermal_lidar_calibration/core/camera_model.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
 #include "thermal_lidar_calibration/core/parameter_range.hpp"
+#include "thermal_lidar_calibration/core/person_counter.hpp"  // personRegions
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
@@ -39,12 +40,6 @@ struct AssociationConfig {
   static const ParameterRanges<AssociationConfig>& ranges();  // checked by validate()
   void validate() const;  // throws std::invalid_argument naming the key and range
 };
-
-// The person regions of a mask, numbered as countMaskPeople counts them: distinct non-zero ids
-// are regions; a mask whose non-zero pixels share one value has its 8-connected components as
-// regions. CV_16UC1, 0 background, 1..n; n in `count` when given. Throws std::invalid_argument on
-// a mask that is not CV_8UC1 / CV_16UC1 or has more than 65535 regions.
-cv::Mat personRegions(const cv::Mat& mask, int* count = nullptr);
 
 struct ClusterMatch {
   std::int32_t label = 0;  // the LiDAR cluster's label

@@ -15,6 +15,12 @@ namespace thermal_lidar_calibration {
 // pixels share one value, the number of 8-connected components of the non-zero pixels.
 int countMaskPeople(const cv::Mat& mask);
 
+// The person regions of a mask, numbered as countMaskPeople counts them: distinct non-zero ids
+// are regions; a mask whose non-zero pixels share one value has its 8-connected components as
+// regions. CV_16UC1, 0 background, 1..n; n in `count` when given. Throws std::invalid_argument on
+// a mask that is not CV_8UC1 / CV_16UC1 or has more than 65535 regions.
+cv::Mat personRegions(const cv::Mat& mask, int* count = nullptr);
+
 // Binary mask (CV_8UC1, 1 = person) from an id mask.
 cv::Mat binarizeMask(const cv::Mat& mask);
 
