@@ -100,6 +100,10 @@ const char* toString(PairingMode mode) {
   return mode == PairingMode::kCounts ? "counts" : "association";
 }
 
+bool pairsByAssociation(const PairingConfig& pairing, const CalibrationConfig& config) {
+  return pairing.mode == PairingMode::kAssociation && config.refine.mode == RefineMode::kLocal;
+}
+
 const ParameterRanges<PairingConfig>& PairingConfig::ranges() {
   static const auto ranges = ParameterRanges<PairingConfig>()
       .add("initial_extrinsic_min_agreement", &PairingConfig::min_initial_agreement, closedRange(0, 1));
@@ -147,7 +151,7 @@ AssociatedCalibration calibrateWithAssociation(const CameraModel& camera, std::v
   pairing.validate();
   AssociatedCalibration out;
   out.counts_pairs = count_pairs.size();
-  const bool associate = pairing.mode == PairingMode::kAssociation && config.refine.mode == RefineMode::kLocal;
+  const bool associate = pairsByAssociation(pairing, config);
   // The paper's mode takes no start either: it is the paper's method alone.
   const std::optional<InitialExtrinsic> start = associate ? initial : std::nullopt;
   if (initial && !start) out.note = "initial extrinsic not used: pairing counts / refine none fit as the paper does";

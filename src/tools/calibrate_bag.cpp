@@ -256,8 +256,7 @@ BagPairs readPairs(const CalibrateBagOptions& options, CoreParameters& params, P
 
   read.builder = std::make_unique<DatasetBuilder>(read.camera, params.gate, params.motion);
   DatasetBuilder& builder = *read.builder;
-  builder.keepAssociationCandidates(!options.monitor && params.pairing.mode == PairingMode::kAssociation &&
-                                    params.calibration.refine.mode == RefineMode::kLocal);
+  builder.keepAssociationCandidates(!options.monitor && pairsByAssociation(params.pairing, params.calibration));
   IngestCallbacks callbacks;
   callbacks.warn = warn;
   callbacks.progress = [&](const BagIngestStats& s, const DatasetBuilder& b) {

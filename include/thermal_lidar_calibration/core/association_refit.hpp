@@ -36,6 +36,10 @@ struct PairingConfig {
   void validate() const;  // throws std::invalid_argument naming the key and range
 };
 
+// Whether a run pairs by association: asked for, and not the paper's mode (refine none is the
+// paper's method alone, the count rule only).
+bool pairsByAssociation(const PairingConfig& pairing, const CalibrationConfig& config);
+
 // What the gate settings mean for association pairs: H_max caps the people matched in a pair,
 // and after any pair the next skip_frames candidate frames make none.
 struct PairingLimits {

@@ -106,8 +106,7 @@ AssociatedCalibration fit(const CalibrationJobRequest& request, const JobCallbac
 
 PairingSummary summarise(const CalibrationJobRequest& request, const AssociatedCalibration& fitted) {
   PairingSummary s;
-  const bool asked = request.parameters.pairing.mode == PairingMode::kAssociation &&
-                     request.parameters.calibration.refine.mode == RefineMode::kLocal;
+  const bool asked = pairsByAssociation(request.parameters.pairing, request.parameters.calibration);
   const bool associate = asked && request.candidates_collected;
   s.mode = associate ? PairingMode::kAssociation : PairingMode::kCounts;
   s.counts = fitted.counts_pairs;
