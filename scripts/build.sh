@@ -11,10 +11,17 @@ ws="${TLC_WS:-$repo/.ws}"
 mkdir -p "$ws/src"
 ln -sfn "$repo" "$ws/src/thermal_lidar_calibration"
 jobs="${TLC_JOBS:-$(nproc)}"
-# ccache, when the machine has it, makes a rebuild after a small change (or in a second
-# checkout, with CCACHE_BASEDIR set above both) take seconds instead of minutes.
+# ccache, when the machine has it, makes a rebuild after a small change, or in a second checkout
+# (CI's fresh clone), take seconds instead of minutes. With the workspace inside the checkout,
+# the checkout is ccache's base directory: every path it sees is then the same relative to the
+# build folder in any clone, wherever it lies. The sloppiness lets it cache the files compiled
+# with a precompiled header (cmake/precompiled_headers.cmake).
 launcher=()
-if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+if command -v ccache >/dev/null; then
+  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  case "$ws/" in "$repo"/*) export CCACHE_BASEDIR="$repo" ;; esac
+  export CCACHE_SLOPPINESS="${CCACHE_SLOPPINESS:-pch_defines,time_macros,include_file_mtime,include_file_ctime}"
+fi
 cd "$ws"
 catkin_make -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON "${launcher[@]}" -j"$jobs" >&2
 for extra in "$@"; do
