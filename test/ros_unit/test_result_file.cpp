@@ -38,6 +38,19 @@ tlc::CalibrationResult sampleResult() {
 
 }  // namespace
 
+TEST(ResultFile, PairStampsSinceTheEpochKeepTheirMicroseconds) {
+  const std::string path = tempDir() + "/stamps.yaml";
+  ResultContext ctx;
+  ctx.pair_stamps_s = {1600000054.2993, 1600000054.35071, 1600000054.4};
+  writeResultFile(path, sampleResult(), ctx);
+  const YAML::Node y = YAML::LoadFile(path);
+  ASSERT_EQ(y["pairs"].size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_NEAR(y["pairs"][i]["stamp"].as<double>(), ctx.pair_stamps_s[i], 1e-6) << i;
+  }
+  EXPECT_DOUBLE_EQ(y["loss"].as<double>(), 0.83) << "the other values keep the file's precision";
+}
+
 TEST(ResultFile, HasEveryInterfaceKeyAndRoundTrips) {
   const std::string path = tempDir() + "/result.yaml";
   ResultContext ctx;

@@ -160,7 +160,9 @@ void emitPairs(YAML::Emitter& out, const CalibrationResult& result, const Result
   const std::size_t n = std::max(result.pair_losses.size(), result.inliers.size());
   for (std::size_t i = 0; i < n; ++i) {
     out << YAML::Flow << YAML::BeginMap;
-    out << YAML::Key << "stamp" << YAML::Value
+    // A stamp since the epoch has 10 digits before the point: the file's 12 significant digits
+    // would round it to 10 ms, more than a camera frame's exposure; 17 keep it to the microsecond.
+    out << YAML::Key << "stamp" << YAML::Value << YAML::DoublePrecision(17)
         << (i < context.pair_stamps_s.size() ? context.pair_stamps_s[i] : 0.0);
     out << YAML::Key << "loss" << YAML::Value
         << (i < result.pair_losses.size() ? result.pair_losses[i] : 0.0);
