@@ -144,9 +144,32 @@ OfferOutcome DatasetBuilder::admit(const std::function<Frame()>& decode, bool st
   return outcome;
 }
 
+void DatasetBuilder::keepAssociationCandidates(bool keep, std::size_t max_candidates) {
+  if (max_candidates == 0) throw std::invalid_argument("association candidates: the bound must be at least 1");
+  keep_candidates_ = keep;
+  max_candidates_ = max_candidates;
+}
+
+// Candidates seen so far are numbered 0, 1, 2, ...; those held are the multiples of the stride.
+// Full: the odd multiples go and the stride doubles, so the held ones stay evenly spaced.
+void DatasetBuilder::keepCandidate(CalibrationPair pair) {
+  const std::uint64_t seen = candidates_seen_++;
+  if (seen % candidate_stride_ != 0) {
+    ++candidates_dropped_;
+    return;
+  }
+  candidates_.push_back(std::move(pair));
+  if (candidates_.size() <= max_candidates_) return;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < candidates_.size(); i += 2) candidates_[kept++] = std::move(candidates_[i]);
+  candidates_dropped_ += candidates_.size() - kept;
+  candidates_.resize(kept);
+  candidate_stride_ *= 2;
+}
+
 void DatasetBuilder::keep(CalibrationPair pair) {
   if (pair.rule == PairRule::kAssociation) {
-    candidates_.push_back(std::move(pair));
+    keepCandidate(std::move(pair));
     return;
   }
   pairs_.push_back(std::move(pair));
@@ -233,6 +256,8 @@ void DatasetBuilder::checkFrameIds(const Frame& frame) {
       pairs_dropped_for_ids_ += pairs_.size();
       pairs_.clear();
       candidates_.clear();
+      candidates_seen_ = 0;
+      candidate_stride_ = 1;
       pending_.clear();
       camera_frame_ = ids.first;
       lidar_frame_ = ids.second;
@@ -259,6 +284,8 @@ std::optional<FrameIdConflict> DatasetBuilder::frameIdConflict(std::uint64_t min
 std::vector<CalibrationPair> DatasetBuilder::takeCandidates() {
   std::vector<CalibrationPair> out;
   out.swap(candidates_);
+  candidates_seen_ = 0;  // the next ones are spaced among themselves
+  candidate_stride_ = 1;
   return out;
 }
 
@@ -271,6 +298,9 @@ std::vector<CalibrationPair> DatasetBuilder::takePairs() {
 void DatasetBuilder::reset() {
   pairs_.clear();
   candidates_.clear();
+  candidates_seen_ = 0;
+  candidate_stride_ = 1;
+  candidates_dropped_ = 0;
   offered_ = 0;
   pending_.clear();
   scans_.clear();

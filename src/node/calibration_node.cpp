@@ -130,6 +130,11 @@ void CalibrationNode::readParameters() {
 
 void CalibrationNode::createBuilder(const CameraModel& camera, const std::string& source) {
   builder_ = std::make_unique<DatasetBuilder>(camera, params_.core.gate, params_.core.motion);
+  // Pairing by association (issue 23): the frames the count rule does not keep are held for the
+  // fit, as calibrate_bag holds them (a drift watch fits its windows by the count rule alone).
+  builder_->keepAssociationCandidates(
+      params_.mode == NodeMode::kCalibrate && pairsByAssociation(params_.core.pairing, params_.core.calibration),
+      static_cast<std::size_t>(params_.association_max_candidates));
   overlay_->setCamera(camera);
   ROS_INFO("camera intrinsics from %s: %s", source.c_str(), camera.describe().c_str());
 }
@@ -181,6 +186,10 @@ void CalibrationNode::diagnoseCalibration(NodeDiagnostics::Status& status) const
   status.add("state", stateName(state_));
   status.add("pairs kept", builder_ ? builder_->pairs().size() : 0);
   status.add("pairs required", params_.core.pairs_required);
+  if (builder_ && builder_->keepsAssociationCandidates()) {
+    status.add("association candidates", builder_->candidates().size());
+    status.add("association candidates dropped (~association_max_candidates)", builder_->candidatesDropped());
+  }
   if (result_) {
     status.addf("loss (px)", "%.4f", result_->loss);
     status.add("time offset", timeOffsetText(*result_, quality_ ? quality_->uncertainty : std::nullopt));

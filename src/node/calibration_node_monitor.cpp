@@ -66,6 +66,8 @@ void CalibrationNode::startMonitoring(const Extrinsic& reference, const std::str
   last_drift_state_ = DriftState::kOk;
   last_timing_state_ = DriftState::kOk;
   if (builder_->frameIdsLocked()) builder_->takePairs();  // the calibration's pairs are done
+  builder_->keepAssociationCandidates(false);  // so are its candidates: a watch pairs by counts
+  builder_->takeCandidates();
   kept_messages_.clear();  // a watch never records
   finished_pairs_ = 0;
   ROS_INFO("drift watch: watching the extrinsic from %s (tests of the latest %d kept pairs every "

@@ -45,6 +45,9 @@ std::string CalibrationNode::startOptimization(const std::string& why) {
   CalibrationJobRequest job;
   job.camera = builder_->camera();
   job.pairs = builder_->pairs();
+  // Copies share the images (cv::Mat): the candidates stay for the next fit (~stop_when quality).
+  job.candidates = builder_->candidates();
+  job.candidates_collected = builder_->keepsAssociationCandidates();
   job.parameters = params_.core;
   job.reference = runReference();
   job.lidar_frame = lidar_frame_;
@@ -53,10 +56,17 @@ std::string CalibrationNode::startOptimization(const std::string& why) {
   job.report_title = "calibration_node " + ros::this_node::getName();
   job.output_file = params_.output_file;
   job.report_dir = params_.report_dir;
+  const bool candidates = job.candidates_collected;
+  const std::size_t n_candidates = job.candidates.size();
   worker_.start(std::move(job));
   logProgress(true);
   setState(CalibrationStatus::OPTIMIZING, "optimizing " + std::to_string(n) + " pairs (" + why + ")");
-  ROS_INFO("optimizing %zu pairs on a worker thread (%s)", n, why.c_str());
+  if (candidates) {
+    ROS_INFO("optimizing %zu pairs and %zu association candidates on a worker thread (%s)", n, n_candidates,
+             why.c_str());
+  } else {
+    ROS_INFO("optimizing %zu pairs on a worker thread (%s)", n, why.c_str());
+  }
   return "";
 }
 
@@ -104,8 +114,9 @@ void CalibrationNode::handleOutcome(CalibrationWorker::Outcome outcome) {
   if (!late.empty()) ROS_WARN("%s", late.c_str());
   result_published_ = false;
   if (tfCheckWaitOver()) publishResult();
-  // The pairs this fit used (collecting went on while it ran with ~stop_when: quality).
-  const std::size_t n = outcome.pairs;
+  // The count rule's pairs this fit used (collecting went on while it ran with ~stop_when:
+  // quality): what ~max_pairs and the next fit count, not the association pairs made from them.
+  const std::size_t n = outcome.pairing.counts;
   if (params_.stop_when == StopWhen::kQuality && quality_ &&
       quality_->verdict.verdict != Verdict::kGood && n < static_cast<std::size_t>(params_.max_pairs)) {
     // Not good yet: the result is out (a better one replaces it), and collecting goes on.

@@ -51,6 +51,10 @@ std::string CalibrationNode::progressLine() const {
   if (c[GateDecision::kSmallCluster] > 0) s << ", small cluster " << c[GateDecision::kSmallCluster];
   if (c[GateDecision::kBadMessage] > 0) s << ", bad " << c[GateDecision::kBadMessage];
   if (pairs_resumed_ > 0) s << " (" << pairs_resumed_ << " resumed)";
+  if (builder_->keepsAssociationCandidates()) {
+    s << "; association candidates " << builder_->candidates().size();
+    if (builder_->candidatesDropped() > 0) s << " (" << builder_->candidatesDropped() << " dropped for the bound)";
+  }
   return s.str();
 }
 
@@ -108,6 +112,8 @@ void CalibrationNode::publishStatus() {
     msg.rejected_small_cluster = static_cast<std::uint32_t>(c[GateDecision::kSmallCluster]);
     msg.rejected_bad_message = static_cast<std::uint32_t>(c[GateDecision::kBadMessage]);
     msg.nonfinite_points_dropped = static_cast<std::uint32_t>(c.nonfinite_points_dropped);
+    msg.association_candidates = static_cast<std::uint32_t>(builder_->candidates().size());
+    msg.association_candidates_dropped = static_cast<std::uint32_t>(builder_->candidatesDropped());
   }
   if (state_ == CalibrationStatus::OPTIMIZING) {
     if (const auto p = worker_.progress()) {

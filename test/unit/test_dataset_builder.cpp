@@ -384,3 +384,26 @@ TEST(DatasetBuilder, KeepsAssociationCandidatesOnlyWhenAskedAndNeverSkippedOnes)
     EXPECT_TRUE(builder.candidates().empty());
   }
 }
+
+// Issue 23, the live node: candidates are bounded. Past the bound every second one held goes and
+// from then on only every second (fourth, ...) new one is kept: those held stay evenly spread over
+// the whole drive (not only its start or its end), and every one passed over is counted.
+TEST(DatasetBuilder, BoundedCandidatesStayEvenlySpreadOverTheDriveAndDropsAreCounted) {
+  tlc::DatasetBuilder builder(camera(), gate(0));
+  builder.keepAssociationCandidates(true, 4);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_EQ(builder.offer([i] { return frame(1, 2, 5, 1.0 + i); }).decision, GateDecision::kCountMismatch);
+  }
+  ASSERT_EQ(builder.candidates().size(), 4u);
+  EXPECT_EQ(builder.candidatesDropped(), 0u);
+  for (int i = 4; i < 16; ++i) builder.offer([i] { return frame(1, 2, 5, 1.0 + i); });
+  // 16 seen with a bound of 4: every fourth, from the first on.
+  ASSERT_EQ(builder.candidates().size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) EXPECT_EQ(builder.candidates()[k].candidate_index, 4 * k) << k;
+  EXPECT_EQ(builder.candidatesDropped(), 12u);
+  EXPECT_TRUE(builder.pairs().empty());  // the count rule's pairs are not touched
+  builder.reset();
+  EXPECT_TRUE(builder.candidates().empty());
+  EXPECT_EQ(builder.candidatesDropped(), 0u);
+  EXPECT_THROW(builder.keepAssociationCandidates(true, 0), std::invalid_argument);
+}

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -81,10 +82,17 @@ class DatasetBuilder {
   // Issue 23: also keep the decoded frames the count rule did not keep but that show people in
   // both modalities (unequal counts, more than H_max, a small cluster), as candidates for pairing
   // by association once an extrinsic is known. Skipped frames stay skipped. Off by default (the
-  // paper keeps nothing else).
-  void keepAssociationCandidates(bool keep) { keep_candidates_ = keep; }
+  // paper keeps nothing else). `max_candidates` bounds the memory (a candidate holds a decoded
+  // image and its regions): when one more would pass it, every second candidate held is dropped,
+  // and from then on only every second (then fourth, ...) new one is kept, so those held stay
+  // spread evenly over the drive (the node collects for as long as it runs).
+  void keepAssociationCandidates(bool keep,
+                                 std::size_t max_candidates = std::numeric_limits<std::size_t>::max());
   bool keepsAssociationCandidates() const { return keep_candidates_; }
-  // The candidates (rule kAssociation, regions set, mask empty), in time order, handed over.
+  // Candidates dropped or passed over for max_candidates since the start (or reset()).
+  std::uint64_t candidatesDropped() const { return candidates_dropped_; }
+  // The candidates (rule kAssociation, regions set, mask empty), in time order, handed over;
+  // the next ones are spaced (max_candidates) among themselves.
   std::vector<CalibrationPair> takeCandidates();
   const std::vector<CalibrationPair>& candidates() const { return candidates_; }
 
@@ -109,6 +117,11 @@ class DatasetBuilder {
   std::vector<CalibrationPair> pairs_;
   bool keep_candidates_ = false;
   std::vector<CalibrationPair> candidates_;
+  std::size_t max_candidates_ = std::numeric_limits<std::size_t>::max();
+  std::uint64_t candidates_seen_ = 0;    // candidates that reached keep(), kept or not
+  std::uint64_t candidate_stride_ = 1;   // keep every stride-th of them (doubles when full)
+  std::uint64_t candidates_dropped_ = 0;
+  void keepCandidate(CalibrationPair pair);
   std::uint64_t offered_ = 0;  // candidate frames offered so far (candidate_index)
   std::string camera_frame_, lidar_frame_;
   bool ids_locked_ = false;

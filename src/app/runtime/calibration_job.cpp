@@ -118,7 +118,7 @@ PairingSummary summarise(const CalibrationJobRequest& request, const AssociatedC
   s.note = fitted.note;
   if (asked && !associate) {
     s.note += std::string(s.note.empty() ? "" : "; ") +
-              "pairing association not applied: this front end kept no frames for it (the live node pairs by counts)";
+              "pairing association not applied: this front end kept no frames for it";
   }
   return s;
 }

@@ -39,6 +39,8 @@ struct NodeParameters {
   double status_rate_hz = 2.0;         // [0.1, 100]; ~status also goes out on every change
   double tf_check_wait_s = 2.0;        // [0, 60]: listen to /tf, /tf_static before publishing
   int overlay_max_points = 30000;      // [100, 10000000] points drawn per overlay image
+  // Issue 23: frames held for pairing by association, at most (each holds its decoded image).
+  int association_max_candidates = 300;
 };
 
 // Its rows (node_parameter_table.cpp) and the rules across keys that follow them; with these,
