@@ -40,6 +40,17 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
       throw std::invalid_argument(std::string("parameter 'reference_file': ") + e.what());
     }
   }
+  if (!params_.core.initial_extrinsic_file.empty()) {
+    try {
+      initial_file_ = readInitialExtrinsic(params_.core.initial_extrinsic_file);
+    } catch (const std::invalid_argument& e) {
+      // readInitialExtrinsic says "initial_extrinsic_file: why"; the node's form names the key once.
+      const std::string why = e.what();
+      const std::string key = "initial_extrinsic_file: ";
+      throw std::invalid_argument("parameter 'initial_extrinsic_file': " +
+                                  (why.rfind(key, 0) == 0 ? why.substr(key.size()) : why));
+    }
+  }
   if (!params_.camera_info_file.empty()) {
     const CameraModel camera = loadCameraInfoFile(params_.camera_info_file);  // throws
     camera_info_msg_ = cameraInfoFromModel(camera);
@@ -91,7 +102,11 @@ CalibrationNode::CalibrationNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   }
   setState(CalibrationStatus::COLLECTING, "collecting");
   if (builder_ && static_cast<int>(builder_->pairs().size()) >= params_.core.pairs_required) {
-    startOptimization("the resumed dataset already holds ~pairs_required pairs");
+    if (params_.initial_from_tf) {
+      resumed_fit_waits_for_tf_ = true;
+    } else {
+      startOptimization("the resumed dataset already holds ~pairs_required pairs");
+    }
   }
 }
 
@@ -224,6 +239,10 @@ void CalibrationNode::reportSilentInputs() {
 void CalibrationNode::onTimer(const ros::WallTimerEvent& /*event*/) {
   guard_.run("the status timer", [&] {
     if (auto outcome = worker_.takeOutcome()) handleOutcome(std::move(*outcome));
+    if (resumed_fit_waits_for_tf_ && (ros::WallTime::now() - start_time_).toSec() >= params_.tf_check_wait_s) {
+      resumed_fit_waits_for_tf_ = false;
+      startOptimization("the resumed dataset already holds ~pairs_required pairs");
+    }
     if (result_ && !result_published_ && tfCheckWaitOver()) publishResult();
     if (result_ && result_published_) watchTf();
     finishWaitingPairs();

@@ -28,6 +28,28 @@ std::optional<JobReference> CalibrationNode::runReference() const {
   return reference;
 }
 
+std::optional<InitialExtrinsic> CalibrationNode::initialExtrinsic() {
+  if (initial_file_) return initial_file_;
+  if (!params_.initial_from_tf || initial_tf_) return initial_tf_;
+  const std::string lidar = builder_->lidarFrame(), camera = builder_->cameraFrame();
+  std::string error = "this node's own result is all the tf tree holds between them";
+  // The same lookup as the reference's: p_C = R p_L + t, through whatever chain links the frames.
+  const std::optional<Extrinsic> in_tf =
+      published_child_ == camera ? std::nullopt : tf_publisher_->lookupExtrinsic(lidar, camera, &error);
+  if (!in_tf) {
+    if (!initial_tf_warned_) {  // once: ~stop_when quality fits again and again
+      ROS_WARN("~initial_from_tf: no tf between '%s' and '%s' (%s); association starts from the paper's first fit",
+               lidar.c_str(), camera.c_str(), error.c_str());
+    }
+    initial_tf_warned_ = true;
+    return std::nullopt;
+  }
+  initial_tf_ = InitialExtrinsic{*in_tf, std::nullopt, "tf " + lidar + " -> " + camera};
+  ROS_INFO("~initial_from_tf: association may start from the %s (if the count rule's pairs agree with it)",
+           initial_tf_->origin.c_str());
+  return initial_tf_;
+}
+
 std::string CalibrationNode::startOptimization(const std::string& why) {
   if (state_ == CalibrationStatus::OPTIMIZING) return "refused: already optimizing";
   if (state_ == CalibrationStatus::MONITORING) {
@@ -50,6 +72,7 @@ std::string CalibrationNode::startOptimization(const std::string& why) {
   job.candidates_collected = builder_->keepsAssociationCandidates();
   job.parameters = params_.core;
   job.reference = runReference();
+  job.initial = initialExtrinsic();
   job.lidar_frame = lidar_frame_;
   job.camera_frame = camera_frame_;
   job.source = "live";

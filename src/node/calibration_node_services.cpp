@@ -31,6 +31,8 @@ bool CalibrationNode::onReset(std_srvs::Trigger::Request& /*req*/, std_srvs::Tri
   collecting_quality_pairs_ = 0;
   result_.reset();
   quality_.reset();
+  initial_tf_.reset();  // looked up again at the next fit
+  initial_tf_warned_ = false;
   result_published_ = true;
   tf_conflict_.clear();
   overlay_->setEstimate(std::nullopt);

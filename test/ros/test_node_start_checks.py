@@ -75,6 +75,26 @@ class StartChecks(unittest.TestCase):
         self.assertIn("parameter 'reference_file'", fatal[0])
         self.assertIn(path, fatal[0])
 
+    def test_unreadable_initial_extrinsic_file(self):
+        # Read at start (issue 23), as calibrate_bag reads it before the bag: not at the first fit.
+        path = os.path.join(self.work, "no_such_start.yaml")
+        code, out = self.start("bad_initial", output_file=os.path.join(self.work, "r5.yaml"),
+                               dataset_bag="", initial_extrinsic_file=path)
+        self.assertNotEqual(code, 0, out)
+        fatal = [line for line in out.splitlines() if "cannot start" in line]
+        self.assertEqual(len(fatal), 1, out)
+        self.assertIn("parameter 'initial_extrinsic_file'", fatal[0])
+        self.assertIn(path, fatal[0])
+
+    def test_initial_from_tf_with_an_initial_extrinsic_file(self):
+        path = os.path.join(self.work, "start.yaml")
+        code, out = self.start("two_starts", output_file=os.path.join(self.work, "r6.yaml"),
+                               dataset_bag="", initial_extrinsic_file=path, initial_from_tf="true")
+        self.assertNotEqual(code, 0, out)
+        fatal = [line for line in out.splitlines() if "cannot start" in line]
+        self.assertEqual(len(fatal), 1, out)
+        self.assertIn("'initial_from_tf' = true and 'initial_extrinsic_file'", fatal[0])
+
 
 if __name__ == "__main__":
     rostest.rosrun(PKG, "node_start_checks", StartChecks)

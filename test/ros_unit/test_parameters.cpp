@@ -265,6 +265,14 @@ TEST(NodeParameters, BadValuesAndCrossKeyRules) {
   EXPECT_EQ(nodeErrorOf("pairs_required: 10\nmin_pairs_to_calibrate: 11\n"),
             "parameter 'min_pairs_to_calibrate' = 11: must be an integer in [1, 10]");
   EXPECT_EQ(loadNodeText("pairs_required: 10\n").min_pairs_to_calibrate, 10);
+  // Issue 23: one place where association starts, the bound at least one candidate.
+  EXPECT_EQ(nodeErrorOf("initial_from_tf: true\ninitial_extrinsic_file: /tmp/start.yaml\n"),
+            "parameters 'initial_from_tf' = true and 'initial_extrinsic_file' = /tmp/start.yaml both name where "
+            "association starts: set one");
+  EXPECT_TRUE(loadNodeText("initial_from_tf: true\n").initial_from_tf);
+  EXPECT_FALSE(loadNodeText("").initial_from_tf);
+  EXPECT_EQ(nodeErrorOf("association_max_candidates: 0\n"),
+            "parameter 'association_max_candidates' = 0: must be an integer in [1, 1000000]");
   // A core key's error comes first, from the core table.
   EXPECT_EQ(nodeErrorOf("population_size: 1\n"),
             "parameter 'population_size' = 1: must be an integer in [2, 100000]");

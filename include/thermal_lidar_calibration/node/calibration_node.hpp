@@ -94,6 +94,10 @@ class CalibrationNode {
   // calibration_node_result.cpp
   std::string startOptimization(const std::string& why);  // "" when started, else the refusal
   std::optional<JobReference> runReference() const;  // the calibration in use, if known
+  // Where association starts (issue 23): ~initial_extrinsic_file, else with ~initial_from_tf the
+  // tf between the two frames (looked up once found, never this node's own result); nullopt:
+  // the paper's first fit.
+  std::optional<InitialExtrinsic> initialExtrinsic();
   // Pairs at which the next fit starts by itself: ~pairs_required, then with ~stop_when quality
   // quality_check_every_pairs more after each fit whose verdict was not good.
   std::size_t nextFitPairs() const;
@@ -192,6 +196,12 @@ class CalibrationNode {
   std::optional<QualityAssessment> quality_;  // of result_: intervals, coverage, verdict, reference
   ResultContext result_context_;              // what the result file holds besides result_
   std::optional<Extrinsic> reference_;        // ~reference_file
+  std::optional<InitialExtrinsic> initial_file_;  // ~initial_extrinsic_file, read at start
+  std::optional<InitialExtrinsic> initial_tf_;    // ~initial_from_tf: the tf, once found
+  bool initial_tf_warned_ = false;                // its absence was said
+  // ~resume with ~initial_from_tf: the resumed dataset's fit waits until the tf tree has been
+  // listened to for ~tf_check_wait_s (the timer starts it).
+  bool resumed_fit_waits_for_tf_ = false;
   std::optional<double> reference_time_offset_s_;  // its camera time offset, if it applied one
   std::string camera_frame_, lidar_frame_;
   std::string published_child_;

@@ -73,6 +73,12 @@ ParameterTable<NodeParameters> makeParameterTable() {
                "1.3 MB at 640x512, 16 bit: 300 are about 400 MB). When full, every second one held is "
                "dropped and only every second new one kept, so they stay spread over the drive; ~status "
                "counts the drops");
+  node.boolean("initial_from_tf", &NodeParameters::initial_from_tf,
+               "pairing association: start from the tf between the LiDAR frame and the camera frame (looked up "
+               "when the first fit starts, after tf_check_wait_s) instead of the paper's first fit, if the count "
+               "rule's pairs agree with it (initial_extrinsic_min_agreement); without that tf, one warning and the "
+               "first fit",
+               "not with initial_extrinsic_file");
   return t;
 }
 
@@ -91,6 +97,10 @@ void finishLoading(const ParameterSource& source, NodeParameters& p) {
     throwBadParameter(source, "max_pairs",
                       "must be at least pairs_required (" + std::to_string(p.core.pairs_required) +
                           ") with stop_when quality");
+  }
+  if (p.initial_from_tf && !p.core.initial_extrinsic_file.empty()) {
+    throw std::invalid_argument("parameters 'initial_from_tf' = true and 'initial_extrinsic_file' = " +
+                                p.core.initial_extrinsic_file + " both name where association starts: set one");
   }
   if (p.resume && p.dataset_bag.empty()) {
     throw std::invalid_argument(

@@ -41,6 +41,9 @@ struct NodeParameters {
   int overlay_max_points = 30000;      // [100, 10000000] points drawn per overlay image
   // Issue 23: frames held for pairing by association, at most (each holds its decoded image).
   int association_max_candidates = 300;
+  // Issue 23: start association from the tf between the LiDAR and the camera frame (if the count
+  // rule's pairs agree with it) instead of the first fit; exclusive with initial_extrinsic_file.
+  bool initial_from_tf = false;
 };
 
 // Its rows (node_parameter_table.cpp) and the rules across keys that follow them; with these,
