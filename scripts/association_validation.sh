@@ -15,7 +15,7 @@ set -euo pipefail
 # shellcheck source=scripts/workspace.sh
 source "$(dirname "${BASH_SOURCE[0]}")/workspace.sh"
 # TLC_BIN: run already built executables (a copy, so that a rebuild cannot change them mid-run).
-if [ -n "${TLC_BIN:-}" ]; then bin="$TLC_BIN"; else prepare_workspace; fi
+if [ -n "${TLC_BIN:-}" ]; then bin="$TLC_BIN"; else prepare_workspace --bench; fi
 rig=fieldsafe
 frames=""
 ideal=0
