@@ -12,7 +12,10 @@
 #   fs_sweep60                          60 ms late, end-of-scan stamps, no per-point times
 #   fs_raw60                            60 ms late, raw sensors (--raw, calibrate_bag --detect)
 #   fs_steady60                         60 ms late, steady straight driving, nobody walking
-# Usage: scripts/timing_validation.sh [--cases "A B"] [--noise "clean realistic"] [SEEDS...]
+# Usage: scripts/timing_validation.sh [--cases "A B"] [--noise "clean realistic"]
+#          [--modes "default none"] [SEEDS...]
+# --modes keeps only those of a case's runs (a case without a `none` run ignores `none`), so the
+# costly runs can go first and the rest follow into the same folder.
 # Results in out/timing/<case>.<noise>.seed<N>.<mode>.yaml; an existing result is kept (delete
 # the folder to measure again). Bags are deleted after use.
 set -euo pipefail
@@ -21,11 +24,13 @@ source "$(dirname "${BASH_SOURCE[0]}")/workspace.sh"
 prepare_workspace
 cases="fs_late60 fs_early40 fs_sync ms2_late60 ms2_early40 ms2_sync fs_endstamp60 fs_sweep60 fs_raw60 fs_steady60"
 noises="clean realistic"
+wanted="default none"
 seeds=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --cases) cases="$2"; shift 2 ;;
     --noise) noises="$2"; shift 2 ;;
+    --modes) wanted="$2"; shift 2 ;;
     *) seeds+=("$1"); shift ;;
   esac
 done
@@ -61,7 +66,10 @@ for case_ in $cases; do
     for seed in "${seeds[@]}"; do
       name="$case_.$noise.seed$seed"
       todo=()
-      for mode in $(modes "$case_"); do [ -s "$out/$name.$mode.yaml" ] || todo+=("$mode"); done
+      for mode in $(modes "$case_"); do
+        [[ " $wanted " == *" $mode "* ]] || continue
+        [ -s "$out/$name.$mode.yaml" ] || todo+=("$mode")
+      done
       [ ${#todo[@]} -gt 0 ] || continue
       bag="$out/$name.bag"
       truth="$out/$name.truth.yaml"
