@@ -35,11 +35,16 @@ class StartChecks(unittest.TestCase):
             self.fail("calibration_node %s started with %s (should have refused)" % (name, params))
         return done.returncode, done.stdout
 
-    def assert_refused(self, output, key, path, reason):
+    def fatal_line(self, output):
+        """The one line saying why the node cannot start."""
         fatal = [line for line in output.splitlines() if "cannot start" in line]
         self.assertEqual(len(fatal), 1, output)
-        self.assertIn("parameter '%s' = %s" % (key, path), fatal[0])
-        self.assertIn(reason, fatal[0])
+        return fatal[0]
+
+    def assert_refused(self, output, key, path, reason):
+        fatal = self.fatal_line(output)
+        self.assertIn("parameter '%s' = %s" % (key, path), fatal)
+        self.assertIn(reason, fatal)
 
     def test_output_file_in_a_missing_directory(self):
         path = os.path.join(self.work, "missing", "result.yaml")
@@ -70,10 +75,9 @@ class StartChecks(unittest.TestCase):
         code, out = self.start("bad_reference", output_file=os.path.join(self.work, "r4.yaml"),
                                dataset_bag="", reference_file=path)
         self.assertNotEqual(code, 0, out)
-        fatal = [line for line in out.splitlines() if "cannot start" in line]
-        self.assertEqual(len(fatal), 1, out)
-        self.assertIn("parameter 'reference_file'", fatal[0])
-        self.assertIn(path, fatal[0])
+        fatal = self.fatal_line(out)
+        self.assertIn("parameter 'reference_file'", fatal)
+        self.assertIn(path, fatal)
 
     def test_unreadable_initial_extrinsic_file(self):
         # Read at start (issue 23), as calibrate_bag reads it before the bag: not at the first fit.
@@ -81,19 +85,17 @@ class StartChecks(unittest.TestCase):
         code, out = self.start("bad_initial", output_file=os.path.join(self.work, "r5.yaml"),
                                dataset_bag="", initial_extrinsic_file=path)
         self.assertNotEqual(code, 0, out)
-        fatal = [line for line in out.splitlines() if "cannot start" in line]
-        self.assertEqual(len(fatal), 1, out)
-        self.assertIn("parameter 'initial_extrinsic_file'", fatal[0])
-        self.assertIn(path, fatal[0])
+        fatal = self.fatal_line(out)
+        self.assertIn("parameter 'initial_extrinsic_file'", fatal)
+        self.assertIn(path, fatal)
 
     def test_initial_from_tf_with_an_initial_extrinsic_file(self):
         path = os.path.join(self.work, "start.yaml")
         code, out = self.start("two_starts", output_file=os.path.join(self.work, "r6.yaml"),
                                dataset_bag="", initial_extrinsic_file=path, initial_from_tf="true")
         self.assertNotEqual(code, 0, out)
-        fatal = [line for line in out.splitlines() if "cannot start" in line]
-        self.assertEqual(len(fatal), 1, out)
-        self.assertIn("'initial_from_tf' = true and 'initial_extrinsic_file'", fatal[0])
+        fatal = self.fatal_line(out)
+        self.assertIn("'initial_from_tf' = true and 'initial_extrinsic_file'", fatal)
 
 
 if __name__ == "__main__":
