@@ -157,6 +157,16 @@ TEST(PersonMotion, PeopleSideBySideFromAFastCarAreNotSwapped) {
   }
 }
 
+// Both people stand, seen from a tractor at 2.5 m/s along x, each tracked over at least 4 scans.
+void expectBothStandingSeenFromTheTractor(const std::vector<PersonMotion>& motions) {
+  ASSERT_EQ(motions.size(), 2u);
+  for (const PersonMotion& m : motions) {
+    EXPECT_GE(m.scans, 4) << m.label;
+    EXPECT_NEAR(m.velocity_mps.x(), -2.5, 1e-6) << m.label;
+    EXPECT_NEAR(m.velocity_mps.y(), 0.0, 1e-6) << m.label;
+  }
+}
+
 TEST(PersonMotion, APersonMissedNextToAnotherIsNotGivenTheOthersPlace) {
   // Two people 1.7 m apart along the path of a tractor at 2.5 m/s; the nearer one is missed in
   // the scan before the pair's (a detector's miss). From the pair's scan the step onto the
@@ -166,12 +176,7 @@ TEST(PersonMotion, APersonMissedNextToAnotherIsNotGivenTheOthersPlace) {
                                        standingSeenFromVehicle({24.8, 3.9}, 2.5, 0.0)};
   const auto scans = scansOf(people, 9, 0.0, [](int s, int k) { return s == 3 && k == 0; });
   const auto motions = estimateMotion(scans, 4, MotionConfig{});
-  ASSERT_EQ(motions.size(), 2u);
-  for (const PersonMotion& m : motions) {
-    EXPECT_GE(m.scans, 4) << m.label;
-    EXPECT_NEAR(m.velocity_mps.x(), -2.5, 1e-6) << m.label;
-    EXPECT_NEAR(m.velocity_mps.y(), 0.0, 1e-6) << m.label;
-  }
+  expectBothStandingSeenFromTheTractor(motions);
 }
 
 TEST(PersonMotion, TwoPeopleEachMissedOnOneSideAreNotSwapped) {
@@ -184,12 +189,7 @@ TEST(PersonMotion, TwoPeopleEachMissedOnOneSideAreNotSwapped) {
                                        standingSeenFromVehicle({21.47, 4.13}, 2.5, 0.0)};
   const auto scans = scansOf(people, 9, 0.0, [](int s, int k) { return (s == 3 && k == 0) || (s == 5 && k == 1); });
   const auto motions = estimateMotion(scans, 4, MotionConfig{});
-  ASSERT_EQ(motions.size(), 2u);
-  for (const PersonMotion& m : motions) {
-    EXPECT_GE(m.scans, 4) << m.label;
-    EXPECT_NEAR(m.velocity_mps.x(), -2.5, 1e-6) << m.label;
-    EXPECT_NEAR(m.velocity_mps.y(), 0.0, 1e-6) << m.label;
-  }
+  expectBothStandingSeenFromTheTractor(motions);
 }
 
 TEST(PersonMotion, ScanSummariesUsePointTimes) {
