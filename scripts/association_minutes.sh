@@ -102,8 +102,9 @@ PY
 }
 
 row() {  # RESULT TRUTH SEED PAIRING FITS STATE BAG
-  /usr/bin/python3 - "$@" <<'PY'
+  PYTHONPATH="$repo/scripts" /usr/bin/python3 - "$@" <<'PY'
 import math, subprocess, sys, yaml
+from extrinsic_error import signed_error
 res, truth, seed, pairing, fits, state, bag = sys.argv[1:8]
 info = yaml.safe_load(subprocess.run(["rosbag", "info", "--yaml", bag], capture_output=True, text=True).stdout)
 start, end = float(info["start"]), float(info["end"])
@@ -112,17 +113,8 @@ try:
     r, t = yaml.safe_load(open(res)), yaml.safe_load(open(truth))
 except OSError:
     print("| %s | %s | %s | no result | - | - | - | - | %s |" % (seed, pairing, fits, drive)); sys.exit()
-def mat(v):  # Rodrigues
-    a = math.sqrt(sum(x * x for x in v))
-    k = [x / a for x in v]; c, s = math.cos(a), math.sin(a)
-    K = [[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]]
-    return [[c * (i == j) + s * K[i][j] + (1 - c) * k[i] * k[j] for j in range(3)] for i in range(3)]
-A, B = mat(r["rotation_vector"]), mat(t["rotation_vector"])
-E = [[sum(A[i][k] * B[j][k] for k in range(3)) for j in range(3)] for i in range(3)]  # A B^T
-a = math.acos(max(-1.0, min(1.0, (E[0][0] + E[1][1] + E[2][2] - 1) / 2)))
-w = [E[2][1] - E[1][2], E[0][2] - E[2][0], E[1][0] - E[0][1]]
-w = [math.degrees(x / (2 * math.sin(a)) * a) for x in w] if a > 1e-12 else [0.0] * 3
-dt = [100 * (x - y) for x, y in zip(r["translation"], t["translation"])]
+a, w, dt = signed_error(r, t)
+w = [math.degrees(x) for x in w]
 by = r["pairs_by_rule"]
 last = max(p["stamp"] for p in r["pairs"])
 good = r["verdict"] == "good" and state == "done"

@@ -41,22 +41,12 @@ detect=(--detect)
 tag="$rig$([ "$ideal" = 1 ] && echo .ideal || true)"
 
 row() {  # RESULT TRUTH SEED MODE SCORE_LINE
-  /usr/bin/python3 - "$@" <<'PY'
+  PYTHONPATH="$repo/scripts" /usr/bin/python3 - "$@" <<'PY'
 import math, sys, yaml
+from extrinsic_error import signed_error
 res, truth, seed, mode, frames, score = sys.argv[1:7]
 r, t = yaml.safe_load(open(res)), yaml.safe_load(open(truth))
-def mat(v):  # Rodrigues
-    a = math.sqrt(sum(x * x for x in v))
-    if a < 1e-12: return [[1.0 if i == j else 0.0 for j in range(3)] for i in range(3)]
-    k = [x / a for x in v]; c, s = math.cos(a), math.sin(a)
-    K = [[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]]
-    return [[c * (i == j) + s * K[i][j] + (1 - c) * k[i] * k[j] for j in range(3)] for i in range(3)]
-A, B = mat(r["rotation_vector"]), mat(t["rotation_vector"])
-E = [[sum(A[i][k] * B[j][k] for k in range(3)) for j in range(3)] for i in range(3)]  # A B^T
-a = math.acos(max(-1.0, min(1.0, (E[0][0] + E[1][1] + E[2][2] - 1) / 2)))
-w = [E[2][1] - E[1][2], E[0][2] - E[2][0], E[1][0] - E[0][1]]
-w = [x / (2 * math.sin(a)) * a for x in w] if a > 1e-12 else [0.0] * 3
-dt = [100 * (x - y) for x, y in zip(r["translation"], t["translation"])]
+a, w, dt = signed_error(r, t)
 by = r.get("pairs_by_rule", {"counts": r["pairs_collected"], "association": 0})
 minutes = int(frames) / 10.0 / 60.0
 print("| %s | %s | %d | %d | %.0f | %d | %s | %s | %.3f | %.2f | %.4f / %.4f | %s |" % (
