@@ -115,6 +115,14 @@ void PairingConfig::validate() const {
   ranges().check(*this);
 }
 
+std::optional<CalibrationPair> associateCandidate(const CameraModel& camera, const CalibrationPair& frame,
+                                                 const Extrinsic& extrinsic, std::optional<double> time_offset_s,
+                                                 const AssociationConfig& config, const PairingLimits& limits) {
+  const FrameAssociation a = associateFrame(camera, frame, extrinsic, time_offset_s, config);
+  if (a.matches.empty() || static_cast<int>(a.matches.size()) > limits.max_people) return std::nullopt;
+  return associatedPair(frame, a);
+}
+
 std::vector<CalibrationPair> associatePairs(const CameraModel& camera, const std::vector<CalibrationPair>& candidates,
                                             const std::vector<std::uint64_t>& count_indices,
                                             const Extrinsic& extrinsic, std::optional<double> time_offset_s,
@@ -130,9 +138,7 @@ std::vector<CalibrationPair> associatePairs(const CameraModel& camera, const std
       ++next_count;
     }
     if (have_last && frame.candidate_index <= last + static_cast<std::uint64_t>(limits.skip_frames)) continue;
-    const FrameAssociation a = associateFrame(camera, frame, extrinsic, time_offset_s, config);
-    if (a.matches.empty() || static_cast<int>(a.matches.size()) > limits.max_people) continue;
-    std::optional<CalibrationPair> pair = associatedPair(frame, a);
+    std::optional<CalibrationPair> pair = associateCandidate(camera, frame, extrinsic, time_offset_s, config, limits);
     if (!pair) continue;
     out.push_back(std::move(*pair));
     last = frame.candidate_index;

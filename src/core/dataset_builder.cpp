@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <exception>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -312,6 +313,17 @@ void DatasetBuilder::reset() {
   other_ids_.clear();
   pairs_dropped_for_ids_ = 0;
   refused_in_a_row_ = 0;
+}
+
+std::vector<CalibrationPair> inOfferOrder(std::vector<CalibrationPair> pairs, std::vector<CalibrationPair> candidates) {
+  std::vector<CalibrationPair> out;
+  out.reserve(pairs.size() + candidates.size());
+  std::merge(std::make_move_iterator(pairs.begin()), std::make_move_iterator(pairs.end()),
+             std::make_move_iterator(candidates.begin()), std::make_move_iterator(candidates.end()),
+             std::back_inserter(out), [](const CalibrationPair& a, const CalibrationPair& b) {
+               return a.candidate_index < b.candidate_index;
+             });
+  return out;
 }
 
 }  // namespace thermal_lidar_calibration

@@ -103,8 +103,31 @@ bool DriftMonitor::isTimingChange(const std::vector<CalibrationPair>& window, Dr
   return true;
 }
 
+void DriftMonitor::pairByAssociation(const AssociationPairing& association) {
+  association.config.validate();
+  association_ = association;
+}
+
+std::optional<DriftRecord> DriftMonitor::add(CalibrationPair pair) {
+  if (pair.rule == PairRule::kAssociation && pair.mask.empty()) return addCandidate(pair);
+  return addPair(std::move(pair));
+}
+
+std::optional<DriftRecord> DriftMonitor::addCandidate(const CalibrationPair& frame) {
+  ++candidates_offered_;
+  if (!association_) return std::nullopt;
+  const auto skip = static_cast<std::uint64_t>(association_->limits.skip_frames);
+  if (last_index_ && frame.candidate_index <= *last_index_ + skip) return std::nullopt;
+  std::optional<CalibrationPair> pair =
+      associateCandidate(camera_, frame, reference_, time_offset_s_, association_->config, association_->limits);
+  if (!pair) return std::nullopt;
+  ++association_pairs_;
+  return addPair(std::move(*pair));
+}
+
 std::optional<DriftRecord> DriftMonitor::addPair(CalibrationPair pair) {
   pair.image.release();
+  last_index_ = last_index_ ? std::max(*last_index_, pair.candidate_index) : pair.candidate_index;
   // Held at the image's instant for the reference's time offset (issue 21).
   if (time_offset_s_) pair = rebasedAtTimeOffset(std::move(pair), *time_offset_s_);
   // The watch's own time for this pair, whichever way it returns (seconds()).

@@ -146,9 +146,9 @@ void CalibrationNode::readParameters() {
 void CalibrationNode::createBuilder(const CameraModel& camera, const std::string& source) {
   builder_ = std::make_unique<DatasetBuilder>(camera, params_.core.gate, params_.core.motion);
   // Pairing by association (issue 23): the frames the count rule does not keep are held for the
-  // fit, as calibrate_bag holds them (a drift watch fits its windows by the count rule alone).
+  // fit, as calibrate_bag holds them, and go to the drift watch with the kept pairs.
   builder_->keepAssociationCandidates(
-      params_.mode == NodeMode::kCalibrate && pairsByAssociation(params_.core.pairing, params_.core.calibration),
+      pairsByAssociation(params_.core.pairing, params_.core.calibration),
       static_cast<std::size_t>(params_.association_max_candidates));
   overlay_->setCamera(camera);
   ROS_INFO("camera intrinsics from %s: %s", source.c_str(), camera.describe().c_str());

@@ -6,6 +6,7 @@
 
 #include "thermal_lidar_calibration/node/calibration_node.hpp"
 
+#include "thermal_lidar_calibration/app/parameters/association_parameters.hpp"
 #include "thermal_lidar_calibration/app/report/quality_output.hpp"
 #include "thermal_lidar_calibration/app/report/static_transform_command.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
@@ -60,14 +61,17 @@ bool updateAvailable(const DriftWatchWorker::Snapshot& s) {
 void CalibrationNode::startMonitoring(const Extrinsic& reference, const std::string& origin,
                                       std::optional<double> time_offset_s) {
   if (params_.core.calibration.time_offset.mode == TimeOffsetMode::kNone) time_offset_s.reset();
-  drift_ = std::make_unique<DriftWatchWorker>(builder_->camera(), reference, params_.core.drift,
-                                              params_.core.calibration, time_offset_s);
+  // Issue 23: the watch pairs by association at the reference as the calibration did, so it gets
+  // the frames the count rule passes over too.
+  const bool associate = pairsByAssociation(params_.core.pairing, params_.core.calibration);
+  drift_ = std::make_unique<DriftWatchWorker>(
+      builder_->camera(), reference, params_.core.drift, params_.core.calibration, time_offset_s,
+      associate ? std::optional<AssociationPairing>(associationPairing(params_.core)) : std::nullopt);
   drift_reference_ = origin;
   last_drift_state_ = DriftState::kOk;
   last_timing_state_ = DriftState::kOk;
   if (builder_->frameIdsLocked()) builder_->takePairs();  // the calibration's pairs are done
-  builder_->keepAssociationCandidates(false);  // so are its candidates: a watch pairs by counts
-  builder_->takeCandidates();
+  builder_->takeCandidates();                              // and so are its candidates
   kept_messages_.clear();  // a watch never records
   finished_pairs_ = 0;
   ROS_INFO("drift watch: watching the extrinsic from %s (tests of the latest %d kept pairs every "
@@ -113,7 +117,9 @@ void CalibrationNode::monitorKeptPairs() {
   if (!drift_ || !builder_->frameIdsLocked()) return;
   camera_frame_ = builder_->cameraFrame();
   lidar_frame_ = builder_->lidarFrame();
-  for (CalibrationPair& pair : builder_->takePairs()) drift_->submit(std::move(pair));
+  for (CalibrationPair& pair : inOfferOrder(builder_->takePairs(), builder_->takeCandidates())) {
+    drift_->submit(std::move(pair));
+  }
 }
 
 void CalibrationNode::updateDrift() {
@@ -217,6 +223,7 @@ void CalibrationNode::fillDriftStatus(CalibrationStatus& msg) const {
   msg.drift_timing_state = s.time_offset_s ? toString(s.timing_state) : "";
   msg.drift_time_offset_change_ms = s.timing_change_s ? 1000.0 * *s.timing_change_s : 0.0;
   msg.drift_pairs_seen = static_cast<std::uint32_t>(s.pairs_seen);
+  msg.drift_association_pairs = static_cast<std::uint32_t>(s.association_pairs);
   msg.drift_pairs_in_window = static_cast<std::uint32_t>(s.pairs_in_window);
   msg.drift_tests = static_cast<std::uint32_t>(s.tests);
   const LatestDrift latest = latestDrift(s);
@@ -265,6 +272,7 @@ void CalibrationNode::diagnoseDrift(NodeDiagnostics::Status& status) const {
   status.addf("loss of the reference (px)", "%.4f", latest.loss_reference);
   status.addf("loss of the new fit (px)", "%.4f", latest.loss_fit);
   status.add("pairs seen", s.pairs_seen);
+  status.add("of which by association", s.association_pairs);
   status.add("pairs in window", s.pairs_in_window);
   status.add("tests", s.tests);
   status.add("update available", updateAvailable(s) ? "yes: ~accept_update" : "no");

@@ -30,6 +30,7 @@ struct DriftWatchWorker::State {
     snapshot.candidate = monitor.candidate();
     snapshot.update_ready = monitor.updateReady();
     snapshot.pairs_seen = monitor.pairsSeen();
+    snapshot.association_pairs = monitor.associationPairs();
     snapshot.pairs_in_window = monitor.pairsInWindow();
     snapshot.seconds = monitor.secondsInTests();
     snapshot.candidates_refused = monitor.candidatesRefused();
@@ -55,7 +56,7 @@ struct DriftWatchWorker::State {
       std::string error;
       bool tested = false;
       try {
-        tested = monitor.addPair(std::move(pair)).has_value();
+        tested = monitor.add(std::move(pair)).has_value();
       } catch (const std::exception& e) {
         error = e.what();
       }
@@ -71,8 +72,10 @@ struct DriftWatchWorker::State {
 
 DriftWatchWorker::DriftWatchWorker(const CameraModel& camera, const Extrinsic& reference,
                                    const DriftConfig& drift, const CalibrationConfig& calibration,
-                                   std::optional<double> time_offset_s)
+                                   std::optional<double> time_offset_s,
+                                   const std::optional<AssociationPairing>& association)
     : state_(std::make_shared<State>(DriftMonitor(camera, reference, drift, calibration, time_offset_s))) {
+  if (association) state_->monitor.pairByAssociation(*association);
   {
     std::lock_guard<std::mutex> monitor_lock(state_->monitor_mutex);
     std::lock_guard<std::mutex> lock(state_->mutex);

@@ -6,6 +6,7 @@
 
 #include "thermal_lidar_calibration/ros/bag_ingest.hpp"
 #include "thermal_lidar_calibration/app/files/writable_path.hpp"
+#include "thermal_lidar_calibration/app/parameters/association_parameters.hpp"
 #include "thermal_lidar_calibration/app/runtime/calibration_job.hpp"
 #include "thermal_lidar_calibration/tools/calibration_summary.hpp"
 #include "thermal_lidar_calibration/app/report/timing_text.hpp"
@@ -128,15 +129,18 @@ std::string besideOutput(const std::string& output, const std::string& suffix) {
 int runDriftWatch(const CalibrateBagOptions& options, const CoreParameters& params,
                   const CameraModel& camera, const DatasetBuilder& builder, const Extrinsic& reference,
                   ProgressLine& progress) {
+  const bool associate = pairsByAssociation(params.pairing, params.calibration);
   const DriftTimeline timeline = watchDrift(
-      camera, builder.pairs(), reference, params.drift, params.calibration,
+      camera, inOfferOrder(builder.pairs(), builder.candidates()), reference, params.drift, params.calibration,
       [&](std::size_t done, std::size_t total) {
         progress.update("drift watch: pair " + std::to_string(done) + "/" + std::to_string(total));
         return !g_interrupted;
       },
       // The reference's own camera time offset (a result file of a run that applied one).
       params.calibration.time_offset.mode == TimeOffsetMode::kNone ? std::nullopt
-                                                                   : readAppliedTimeOffset(options.reference));
+                                                                   : readAppliedTimeOffset(options.reference),
+      // Issue 23: the frames the count rule did not keep pair by association at the reference.
+      associate ? std::optional<AssociationPairing>(associationPairing(params)) : std::nullopt);
   progress.finish();
   const std::string lidar = builder.lidarFrame().empty() ? "lidar" : builder.lidarFrame();
   const std::string cam = builder.cameraFrame().empty() ? "camera" : builder.cameraFrame();
@@ -160,6 +164,10 @@ int runDriftWatch(const CalibrateBagOptions& options, const CoreParameters& para
   std::printf("  pairs            %llu kept, %zu tests of the latest %d pairs every %d\n",
               static_cast<unsigned long long>(timeline.pairs), timeline.records.size(),
               params.drift.window_pairs, params.drift.period_pairs);
+  std::printf("  pairs by rule    counts %llu, association %llu (of %llu frames the count rule did not keep)\n",
+              static_cast<unsigned long long>(timeline.pairs - timeline.association_pairs),
+              static_cast<unsigned long long>(timeline.association_pairs),
+              static_cast<unsigned long long>(timeline.candidates));
   std::printf("  state            %s at the end; first WARN %s, first ERROR %s\n", toString(timeline.state),
               stamp(timeline.first_warn_stamp_s).c_str(), stamp(timeline.first_error_stamp_s).c_str());
   std::printf("  change           %s against %s%s\n", line, options.reference.c_str(),
@@ -256,7 +264,7 @@ BagPairs readPairs(const CalibrateBagOptions& options, CoreParameters& params, P
 
   read.builder = std::make_unique<DatasetBuilder>(read.camera, params.gate, params.motion);
   DatasetBuilder& builder = *read.builder;
-  builder.keepAssociationCandidates(!options.monitor && pairsByAssociation(params.pairing, params.calibration));
+  builder.keepAssociationCandidates(pairsByAssociation(params.pairing, params.calibration));
   IngestCallbacks callbacks;
   callbacks.warn = warn;
   callbacks.progress = [&](const BagIngestStats& s, const DatasetBuilder& b) {

@@ -14,18 +14,22 @@
 
 namespace thermal_lidar_calibration {
 
-DriftTimeline watchDrift(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
+DriftTimeline watchDrift(const CameraModel& camera, const std::vector<CalibrationPair>& stream,
                          const Extrinsic& reference, const DriftConfig& drift,
                          const CalibrationConfig& calibration,
                          const std::function<bool(std::size_t, std::size_t)>& progress,
-                         std::optional<double> time_offset_s) {
+                         std::optional<double> time_offset_s,
+                         const std::optional<AssociationPairing>& association) {
   DriftMonitor monitor(camera, reference, drift, calibration, time_offset_s);
+  if (association) monitor.pairByAssociation(*association);
   DriftTimeline timeline;
   timeline.reference = reference;
-  for (std::size_t i = 0; i < pairs.size(); ++i) {
-    if (auto record = monitor.addPair(pairs[i])) timeline.records.push_back(*record);
-    if (progress && !progress(i + 1, pairs.size())) break;
+  for (std::size_t i = 0; i < stream.size(); ++i) {
+    if (auto record = monitor.add(stream[i])) timeline.records.push_back(*record);
+    if (progress && !progress(i + 1, stream.size())) break;
   }
+  timeline.association_pairs = monitor.associationPairs();
+  timeline.candidates = monitor.candidatesOffered();
   timeline.candidate = monitor.candidate();
   timeline.state = monitor.state();
   timeline.first_warn_stamp_s = monitor.firstWarnStamp();
@@ -124,6 +128,10 @@ void writeDriftResult(const std::string& path, const DriftTimeline& timeline,
     out << YAML::Null;
   }
   out << YAML::Key << "pairs" << YAML::Value << timeline.pairs;
+  out << YAML::Key << "pairs_by_rule" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "counts" << YAML::Value << timeline.pairs - timeline.association_pairs;
+  out << YAML::Key << "association" << YAML::Value << timeline.association_pairs;
+  out << YAML::EndMap;
   out << YAML::Key << "tests" << YAML::Value << timeline.records.size();
   if (timeline.candidate) {
     const DriftCandidate& c = *timeline.candidate;

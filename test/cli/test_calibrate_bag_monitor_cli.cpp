@@ -1,6 +1,6 @@
 // calibrate_bag --monitor (issue 9): a drive with a mid-drive bump ends in ERROR, confirmed after
 // the bump and never before it, with the timeline beside the result; the same drive without the
-// bump stays OK throughout.
+// bump stays OK throughout; the watch pairs by association unless `pairing: counts` (issue 23).
 
 #include "cli_run.hpp"
 #include "../support/test_files.hpp"
@@ -45,10 +45,11 @@ class CalibrateBagMonitorCli : public ::testing::Test {
     ASSERT_EQ(gen.exit_code, 0) << gen.err;
   }
   // Watches `name`.bag against the extrinsic it starts with (its truth file's top-level keys).
-  static RunResult monitor(const std::string& name) {
+  // `extra`: more options; the result is `name``suffix`.yaml.
+  static RunResult monitor(const std::string& name, const std::string& extra = "", const std::string& suffix = "") {
     return tlc_cli_test::runTool(CALIBRATE_BAG_EXE,
                                  "--bag '" + dir_ + "/" + name + ".bag' --monitor --reference '" + dir_ + "/" +
-                                     name + ".truth.yaml' --output '" + dir_ + "/" + name + ".yaml'",
+                                     name + ".truth.yaml' --output '" + dir_ + "/" + name + suffix + ".yaml'" + extra,
                                  dir_);
   }
   static std::string dir_;
@@ -68,6 +69,11 @@ TEST_F(CalibrateBagMonitorCli, ABumpIsConfirmedAfterItHappensWithTheTimelineBesi
   }
   ASSERT_TRUE(y["drift"]);
   EXPECT_EQ(y["drift"]["state"].as<std::string>(), "ERROR");
+  // Issue 23: the watch pairs the frames the count rule passed over, at the reference.
+  const YAML::Node by_rule = y["drift"]["pairs_by_rule"];
+  EXPECT_GT(by_rule["association"].as<int>(), 0);
+  EXPECT_EQ(by_rule["counts"].as<int>() + by_rule["association"].as<int>(), y["drift"]["pairs"].as<int>());
+  EXPECT_NE(r.out.find("pairs by rule    counts "), std::string::npos) << r.out;
   // A steady drive cannot tell a latency change from a shift along the travel: never timing.
   EXPECT_EQ(y["drift"]["timing_state"].as<std::string>(), "OK");
   ASSERT_FALSE(y["drift"]["first_error_stamp"].IsNull());
@@ -141,13 +147,26 @@ TEST_F(CalibrateBagMonitorCli, ABumpIsConfirmedAfterItHappensWithTheTimelineBesi
   EXPECT_GT(stddev[0] + stddev[1] + stddev[2], 10.0) << "a blank plot";
 }
 
-TEST_F(CalibrateBagMonitorCli, AStableDriveStaysOk) {
+TEST_F(CalibrateBagMonitorCli, AStableDriveStaysOkPairedByCountsOrByAssociation) {
   const RunResult r = monitor("stable");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const YAML::Node y = YAML::LoadFile(dir_ + "/stable.yaml");
   EXPECT_EQ(y["drift"]["state"].as<std::string>(), "OK");
   EXPECT_TRUE(y["drift"]["first_warn_stamp"].IsNull()) << y["drift"]["first_warn_stamp"];
   EXPECT_TRUE(y["drift"]["first_error_stamp"].IsNull());
+  {
+    std::ofstream config(dir_ + "/counts.yaml");
+    config << "pairing: counts\n";
+  }
+  const RunResult counts = monitor("stable", " --config '" + dir_ + "/counts.yaml'", ".counts");
+  ASSERT_EQ(counts.exit_code, 0) << counts.err;
+  const YAML::Node c = YAML::LoadFile(dir_ + "/stable.counts.yaml")["drift"];
+  EXPECT_EQ(c["state"].as<std::string>(), "OK");
+  EXPECT_EQ(c["pairs_by_rule"]["association"].as<int>(), 0);
+  EXPECT_EQ(c["pairs_by_rule"]["counts"].as<int>(), c["pairs"].as<int>());
+  // The count rule's pairs are the same either way; association adds to them.
+  EXPECT_EQ(y["drift"]["pairs_by_rule"]["counts"].as<int>(), c["pairs"].as<int>());
+  EXPECT_GT(y["drift"]["pairs"].as<int>(), c["pairs"].as<int>());
 }
 
 TEST_F(CalibrateBagMonitorCli, MonitorWithoutAReferenceIsAUsageError) {

@@ -119,6 +119,9 @@ TEST(NodeMonitor, ConfirmsTheBumpAndPublishesTheNewExtrinsic) {
   std::lock_guard<std::mutex> lock(g_observed.mutex);
   EXPECT_EQ(g_observed.last_status.state_name, "monitoring");
   EXPECT_GE(g_observed.last_status.drift_updates, 1u);
+  // Issue 23: the watch pairs by association too (the default pairing), counted among its pairs.
+  EXPECT_GT(g_observed.last_status.drift_association_pairs, 0u) << g_observed.last_status;
+  EXPECT_LT(g_observed.last_status.drift_association_pairs, g_observed.last_status.drift_pairs_seen);
   const Extrinsic published = nodePublished(child);
   const double rot_err_deg = thermal_lidar_calibration::rotationErrorRad(published, after) * 180.0 / M_PI;
   const double trans_err_m = thermal_lidar_calibration::translationErrorM(published, after);

@@ -108,3 +108,34 @@ TEST(DriftWatchWorker, RefusesABadConfig) {
   EXPECT_THROW(DriftWatchWorker(fieldsafeCamera(), fieldsafeTruth(), bad, CalibrationConfig{}),
                std::invalid_argument);
 }
+
+TEST(DriftWatchWorker, PairsCandidateFramesByAssociationWhenAsked) {
+  // The first 12 pairs as kept at frames 0, 10, 20, ..., and frames 5, 15, ... with the same
+  // people and a post: candidates the watch pairs at its reference (issue 23).
+  const BumpStream& stream = bumpStream();
+  std::vector<CalibrationPair> frames;
+  for (std::size_t i = 0; i < 12; ++i) {
+    CalibrationPair pair = stream.pairs[i];
+    pair.candidate_index = 10 * i;
+    frames.push_back(pair);
+    frames.push_back(test_support::asCandidateWithPost(stream.pairs[i + 12], 10 * i + 5, i % 2 == 0 ? 1.2 : -1.2));
+  }
+  DriftMonitor direct(fieldsafeCamera(), fieldsafeTruth(), fastDrift(), CalibrationConfig{});
+  direct.pairByAssociation(AssociationPairing{});
+  for (const CalibrationPair& f : frames) direct.add(f);
+
+  DriftWatchWorker associating(fieldsafeCamera(), fieldsafeTruth(), fastDrift(), CalibrationConfig{}, std::nullopt,
+                               AssociationPairing{});
+  DriftWatchWorker counting(fieldsafeCamera(), fieldsafeTruth(), fastDrift(), CalibrationConfig{});
+  for (const CalibrationPair& f : frames) {
+    associating.submit(f);
+    counting.submit(f);
+  }
+  ASSERT_TRUE(associating.drain(120.0));
+  ASSERT_TRUE(counting.drain(120.0));
+  EXPECT_GE(associating.snapshot().association_pairs, 8u);
+  EXPECT_EQ(associating.snapshot().association_pairs, direct.associationPairs());
+  EXPECT_EQ(associating.snapshot().pairs_seen, 12u + direct.associationPairs());
+  EXPECT_EQ(counting.snapshot().association_pairs, 0u);
+  EXPECT_EQ(counting.snapshot().pairs_seen, 12u);
+}

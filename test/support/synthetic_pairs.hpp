@@ -9,6 +9,7 @@
 #include "thermal_lidar_calibration/core/calibration_pair.hpp"
 #include "thermal_lidar_calibration/core/camera_model.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
+#include "thermal_lidar_calibration/core/person_counter.hpp"
 #include "thermal_lidar_calibration/core/random.hpp"
 #include "thermal_lidar_calibration/synthetic/rig_presets.hpp"
 
@@ -103,6 +104,22 @@ inline std::vector<CalibrationPair> makeSyntheticPairs(const CameraModel& camera
     pairs.push_back(std::move(pair));
   }
   return pairs;
+}
+
+// A frame the count rule rejects, made of a pair: the same people plus a post the LiDAR sees and
+// the camera's mask does not (a cluster more than the mask has people), held as a candidate for
+// association (regions set, mask empty). The post stands 9 m ahead, `y_m` to the left (LiDAR frame).
+constexpr std::int32_t kPostLabel = 99;
+inline CalibrationPair asCandidateWithPost(CalibrationPair f, std::uint64_t candidate_index, double y_m) {
+  f.regions = personRegions(f.mask);
+  f.mask = cv::Mat();
+  f.rule = PairRule::kAssociation;
+  f.candidate_index = candidate_index;
+  for (int k = 0; k < 30; ++k) {
+    f.points.emplace_back(9.0f, static_cast<float>(y_m), static_cast<float>(-1.9 + 0.05 * k));
+    f.labels.push_back(kPostLabel);
+  }
+  return f;
 }
 
 }  // namespace test_support

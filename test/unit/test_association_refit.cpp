@@ -16,7 +16,7 @@ using test_support::fieldsafeTruth;
 
 namespace {
 constexpr double kDeg = M_PI / 180.0;
-constexpr std::int32_t kPostLabel = 99;
+using test_support::kPostLabel;
 
 std::vector<CalibrationPair> countPairs(int n, std::uint64_t seed) {
   test_support::SyntheticPairsOptions o;
@@ -27,21 +27,12 @@ std::vector<CalibrationPair> countPairs(int n, std::uint64_t seed) {
   return pairs;
 }
 
-// Frames the count rule rejects: the same kind of people plus a post the LiDAR sees and the
-// camera's mask does not (a cluster more than the mask has people).
+// Frames the count rule rejects: the same kind of people plus a post (test_support).
 std::vector<CalibrationPair> candidates(int n, std::uint64_t seed) {
   std::vector<CalibrationPair> frames = countPairs(n, seed);
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    CalibrationPair& f = frames[i];
-    f.regions = personRegions(f.mask);
-    f.mask = cv::Mat();
-    f.rule = PairRule::kAssociation;
-    f.candidate_index = 100 * i + 50;
     const double y = (i % 2 == 0 ? 1.0 : -1.0) * (1.0 + 0.1 * static_cast<double>(i % 7));
-    for (int k = 0; k < 30; ++k) {
-      f.points.emplace_back(9.0f, static_cast<float>(y), static_cast<float>(-1.9 + 0.05 * k));
-      f.labels.push_back(kPostLabel);
-    }
+    frames[i] = test_support::asCandidateWithPost(std::move(frames[i]), 100 * i + 50, y);
   }
   return frames;
 }

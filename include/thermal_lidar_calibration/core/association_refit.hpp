@@ -47,6 +47,13 @@ struct PairingLimits {
   int skip_frames = 3;
 };
 
+// What pairing a frame by association needs besides the extrinsic: the matcher's settings and
+// the gate's limits (the calibration's rounds and the drift watch alike).
+struct AssociationPairing {
+  AssociationConfig config;
+  PairingLimits limits;
+};
+
 struct InitialExtrinsic {
   Extrinsic extrinsic;
   std::optional<double> time_offset_s;  // the file's, when it applied one
@@ -73,6 +80,12 @@ AssociatedCalibration calibrateWithAssociation(const CameraModel& camera, std::v
                                                const PairingLimits& limits,
                                                const std::optional<InitialExtrinsic>& initial = std::nullopt,
                                                const ProgressCallback& progress = {});
+
+// One candidate frame paired at an extrinsic and time offset: nullopt when no cluster matched or
+// more than H_max did (the skip rule is the caller's: it depends on the pairs around the frame).
+std::optional<CalibrationPair> associateCandidate(const CameraModel& camera, const CalibrationPair& frame,
+                                                 const Extrinsic& extrinsic, std::optional<double> time_offset_s,
+                                                 const AssociationConfig& config, const PairingLimits& limits);
 
 // The association pairs of `candidates` at an extrinsic and time offset, with the skip rule
 // counted from the count rule's pairs (`count_indices`, their candidate_index, sorted) and from

@@ -139,4 +139,9 @@ class DatasetBuilder {
   std::vector<ScanPeople> scans_;        // recent scans, in time order
 };
 
+// Kept pairs and candidate frames (as takePairs() and takeCandidates() hand them over) as one
+// stream in the order the frames were offered (candidate_index): the drift watch pairs each
+// candidate against the pairs before it.
+std::vector<CalibrationPair> inOfferOrder(std::vector<CalibrationPair> pairs, std::vector<CalibrationPair> candidates);
+
 }  // namespace thermal_lidar_calibration

@@ -14,6 +14,7 @@
 // change it accepted: older pairs show the old rig. ROS-free; the node and calibrate_bag
 // --monitor drive it alike.
 
+#include "thermal_lidar_calibration/core/association_refit.hpp"
 #include "thermal_lidar_calibration/core/calibration_config.hpp"
 #include "thermal_lidar_calibration/core/calibration_pair.hpp"
 #include "thermal_lidar_calibration/core/camera_model.hpp"
@@ -85,6 +86,23 @@ class DriftMonitor {
   // and points only). Returns the test's record when one ran.
   std::optional<DriftRecord> addPair(CalibrationPair pair);
 
+  // Issue 23: the frames the count rule did not keep (people in both modalities) are paired person
+  // by person at the reference in use and its time offset, as the calibration pairs them (H_max;
+  // the skip rule counted from the latest pair of either rule), so a watch gets the pairs the
+  // calibration got. Off until called: without it the watch pairs by counts alone. Association at
+  // the reference cannot hide a change: a frame that no longer lands on its people within the
+  // association's tolerance makes no pair, and the pairs it makes are fitted like any other.
+  void pairByAssociation(const AssociationPairing& association);
+  // A candidate frame (rule kAssociation, `regions` set, newer than the previous pair): its
+  // association pair goes in as addPair's would. nullopt when no pair came of it (association
+  // off, within the skip rule, nothing matched) or no test ran.
+  std::optional<DriftRecord> addCandidate(const CalibrationPair& frame);
+  // Either kind in time order: a candidate frame to addCandidate, a kept pair to addPair.
+  std::optional<DriftRecord> add(CalibrationPair pair);
+  // Of pairsSeen(), those made by association; and the candidate frames offered so far.
+  std::uint64_t associationPairs() const { return association_pairs_; }
+  std::uint64_t candidatesOffered() const { return candidates_offered_; }
+
   DriftState state() const { return machine_.state(); }
   DriftState timingState() const { return timing_machine_.state(); }
   std::optional<double> timeOffset() const { return time_offset_s_; }
@@ -154,6 +172,10 @@ class DriftMonitor {
   double confirm_p_value_ = 1.0;  // of the window test that confirmed the change
   double seconds_ = 0.0;
   std::uint64_t candidates_refused_ = 0;
+  std::optional<AssociationPairing> association_;
+  std::optional<std::uint64_t> last_index_;  // candidate_index of the latest pair, either rule
+  std::uint64_t association_pairs_ = 0;
+  std::uint64_t candidates_offered_ = 0;
 };
 
 }  // namespace thermal_lidar_calibration

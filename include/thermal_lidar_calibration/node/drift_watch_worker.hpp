@@ -26,6 +26,7 @@ class DriftWatchWorker {
     std::optional<DriftCandidate> candidate;   // after a confirmed change
     bool update_ready = false;                 // DriftMonitor::updateReady()
     std::uint64_t pairs_seen = 0;
+    std::uint64_t association_pairs = 0;       // of pairs_seen, made by association (issue 23)
     std::size_t pairs_in_window = 0;
     std::uint64_t tests = 0;
     std::uint64_t candidates_refused = 0;      // new fits too far to offer (max_update_*)
@@ -41,15 +42,17 @@ class DriftWatchWorker {
     std::optional<double> timing_change_s;
   };
 
-  // Throws std::invalid_argument on a bad config or camera.
+  // Throws std::invalid_argument on a bad config or camera. With `association`, candidate frames
+  // submitted are paired by association at the reference in use (DriftMonitor::pairByAssociation).
   DriftWatchWorker(const CameraModel& camera, const Extrinsic& reference, const DriftConfig& drift,
-                   const CalibrationConfig& calibration, std::optional<double> time_offset_s = std::nullopt);
+                   const CalibrationConfig& calibration, std::optional<double> time_offset_s = std::nullopt,
+                   const std::optional<AssociationPairing>& association = std::nullopt);
   // Stops the thread after the test in progress (at most one window fit).
   ~DriftWatchWorker();
   DriftWatchWorker(const DriftWatchWorker&) = delete;
   DriftWatchWorker& operator=(const DriftWatchWorker&) = delete;
 
-  // Queues a kept pair (its image is dropped). At most kMaxQueued wait; beyond that the oldest
+  // Queues a kept pair or a candidate frame, in time order (its image is dropped). At most kMaxQueued wait; beyond that the oldest
   // waiting pair is dropped and counted (a machine too slow for the watch must not grow without
   // bound).
   void submit(CalibrationPair pair);

@@ -25,6 +25,9 @@ struct DriftTimeline {
   DriftState state = DriftState::kOk;       // at the end
   std::optional<double> first_warn_stamp_s, first_error_stamp_s;
   std::uint64_t pairs = 0;
+  // Issue 23: of `pairs`, those made by association, and the candidate frames offered for it.
+  std::uint64_t association_pairs = 0;
+  std::uint64_t candidates = 0;
   double seconds = 0.0;                     // in the monitor's tests and fits
   // Issue 21: the reference's camera time offset, and a change of it the tests found.
   std::optional<double> time_offset_s;
@@ -32,13 +35,16 @@ struct DriftTimeline {
   std::optional<double> timing_change_s;    // the latest, while the timing state is not OK
 };
 
-// `progress(done, total)` after each pair; return false to stop early.
+// `stream`: kept pairs and candidate frames in time order (inOfferOrder, dataset_builder.hpp);
+// the candidates pair by `association` when given, else they are passed over.
+// `progress(done, total)` after each; return false to stop early.
 // `time_offset_s`: the reference's camera time offset, when its calibration applied one.
-DriftTimeline watchDrift(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
+DriftTimeline watchDrift(const CameraModel& camera, const std::vector<CalibrationPair>& stream,
                          const Extrinsic& reference, const DriftConfig& drift,
                          const CalibrationConfig& calibration,
                          const std::function<bool(std::size_t, std::size_t)>& progress = {},
-                         std::optional<double> time_offset_s = std::nullopt);
+                         std::optional<double> time_offset_s = std::nullopt,
+                         const std::optional<AssociationPairing>& association = std::nullopt);
 
 // One row per test: stamp, pairs_in_window, state, rotation_change_deg, translation_change_cm,
 // loss_reference, loss_fit (the change's angle and length against the reference). Throws

@@ -16,7 +16,7 @@ void addAssociationRows(ParameterTable<CoreParameters>& t) {
                  "must be 'counts' or 'association'",
                  "counts: the paper's rule alone (equal people counts); association: after the first fit on the "
                  "count rule's pairs, every frame with people in both modalities is paired person by person at "
-                 "the extrinsic, refitted until the pairs stop changing",
+                 "the extrinsic, refitted until the pairs stop changing (a drift watch pairs them at its reference)",
                  "refine none (the paper's method) always pairs by counts");
   association.real("association_min_overlap", &AssociationConfig::min_overlap, kConfigRange, "",
                    "a LiDAR person's share of in-view points that must land on one mask region to pair with it");
@@ -34,6 +34,12 @@ void addAssociationRows(ParameterTable<CoreParameters>& t) {
   pairing.real("initial_extrinsic_min_agreement", &PairingConfig::min_initial_agreement, kConfigRange, "",
                "the share of the count rule's pairs within threshold_sample_px of the initial extrinsic it "
                "needs; else it is refused (the result's association note says so) and the paper's fit runs");
+}
+
+AssociationPairing associationPairing(const CoreParameters& p) {
+  AssociationPairing a{p.pairing.association, PairingLimits{p.gate.max_people, p.gate.skip_frames}};
+  a.config.min_points_in_view = p.gate.min_points_per_cluster;
+  return a;
 }
 
 }  // namespace thermal_lidar_calibration

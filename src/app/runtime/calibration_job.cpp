@@ -2,6 +2,7 @@
 
 #include "thermal_lidar_calibration/app/runtime/calibration_job.hpp"
 
+#include "thermal_lidar_calibration/app/parameters/association_parameters.hpp"
 #include "thermal_lidar_calibration/app/report/calibration_report.hpp"
 #include "thermal_lidar_calibration/core/loss.hpp"
 #include "thermal_lidar_calibration/core/pose_difference.hpp"
@@ -92,10 +93,11 @@ std::optional<InitialExtrinsic> initialExtrinsic(const CalibrationJobRequest& re
 // The first fit on the count rule's pairs, then (pairing association) the association rounds.
 AssociatedCalibration fit(const CalibrationJobRequest& request, const JobCallback& callback) {
   const CoreParameters& p = request.parameters;
+  const AssociationPairing association = associationPairing(p);
   PairingConfig pairing = p.pairing;
-  pairing.association.min_points_in_view = p.gate.min_points_per_cluster;
+  pairing.association = association.config;
   return calibrateWithAssociation(request.camera, request.pairs, request.candidates, p.calibration, pairing,
-                                  PairingLimits{p.gate.max_people, p.gate.skip_frames}, initialExtrinsic(request),
+                                  association.limits, initialExtrinsic(request),
                                   [&](const Progress& progress) {
                                     if (!callback) return true;
                                     JobProgress job;

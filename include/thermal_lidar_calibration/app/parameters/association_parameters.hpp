@@ -8,4 +8,9 @@ namespace thermal_lidar_calibration {
 
 void addAssociationRows(ParameterTable<CoreParameters>& t);
 
+// The association the parameters ask for, with the gate's say in it (a matched person needs the
+// gate's min_points_per_cluster in view; H_max and the skip rule hold for its pairs). Whether a
+// run pairs by association at all: pairsByAssociation(p.pairing, p.calibration).
+AssociationPairing associationPairing(const CoreParameters& p);
+
 }  // namespace thermal_lidar_calibration
