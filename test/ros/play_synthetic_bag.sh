@@ -46,4 +46,4 @@ mkdir -p "$cache_root"
 ln "$cache/synthetic.bag" "$work_dir/synthetic.bag" 2>/dev/null || cp "$cache/synthetic.bag" "$work_dir/synthetic.bag"
 cp "$cache/generator.log" "$work_dir/generator.log"
 cp "$cache/truth.yaml" "$work_dir/truth.yaml"  # a new file: wait_for_file.sh sees it written now
-exec rosrun thermal_lidar_calibration paced_bag_player "$work_dir/synthetic.bag" --clock "${player_args[@]}" "${ros_args[@]}"
+exec "$(catkin_find --first-only --libexec thermal_lidar_calibration paced_bag_player)" "$work_dir/synthetic.bag" --clock "${player_args[@]}" "${ros_args[@]}"

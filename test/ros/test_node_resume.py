@@ -26,6 +26,13 @@ from thermal_lidar_calibration.msg import CalibrationStatus
 
 NODE = "/calibration_node"
 PKG = "thermal_lidar_calibration"
+
+
+def executable(name):
+    """The package's built executable (catkin_find, as play_synthetic_bag.sh finds the generator:
+    rosrun would walk the whole checkout, the catkin workspace in it included, at every start)."""
+    return subprocess.check_output(["catkin_find", "--first-only", "--libexec", PKG, name],
+                                   universal_newlines=True).strip()
 # The deadline of every wait: it only stops a hung test (a slow machine gets there later).
 HANG_GUARD_S = 120
 
@@ -97,7 +104,7 @@ class KillAndResume(unittest.TestCase):
         os.makedirs(self.work)
         generated = os.path.join(self.work, "generated.bag")
         with open(os.path.join(self.work, "generator.log"), "w") as log:
-            subprocess.run(["rosrun", PKG, "make_synthetic_bag", "--output", generated, "--truth",
+            subprocess.run([executable("make_synthetic_bag"), "--output", generated, "--truth",
                             os.path.join(self.work, "truth.yaml"), "--frames", "300", "--seed", "11"],
                            check=True, stdout=log, stderr=subprocess.STDOUT)
         self.bag = os.path.join(self.work, "synthetic.bag")
@@ -137,12 +144,12 @@ class KillAndResume(unittest.TestCase):
 
     def start_node(self):
         self.statuses.reset()
-        node = self.start(["rosrun", PKG, "calibration_node", "__name:=calibration_node"])
+        node = self.start([executable("calibration_node"), "__name:=calibration_node"])
         self.assertTrue(wait_for(lambda: self.statuses.last is not None), "no ~status")
         return node
 
     def play(self, *options):
-        return self.start(["rosrun", PKG, "paced_bag_player", self.bag, "__name:=player"] + list(options))
+        return self.start([executable("paced_bag_player"), self.bag, "__name:=player"] + list(options))
 
     def test_kill_half_way_then_resume(self):
         required = rospy.get_param(NODE + "/pairs_required")

@@ -16,6 +16,13 @@ import rostest
 PKG = "thermal_lidar_calibration"
 
 
+def executable(name):
+    """The package's built executable (catkin_find, as play_synthetic_bag.sh finds the generator:
+    rosrun would walk the whole checkout, the catkin workspace in it included, at every start)."""
+    return subprocess.check_output(["catkin_find", "--first-only", "--libexec", PKG, name],
+                                   universal_newlines=True).strip()
+
+
 class StartChecks(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -26,7 +33,7 @@ class StartChecks(unittest.TestCase):
 
     def start(self, name, **params):
         """Runs the node with private params; returns (exit code, output) or fails on a hang."""
-        args = ["rosrun", PKG, "calibration_node", "__name:=" + name]
+        args = [executable("calibration_node"), "__name:=" + name]
         args += ["_%s:=%s" % (k, v) for k, v in params.items()]
         try:
             done = subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
