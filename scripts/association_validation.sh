@@ -9,8 +9,11 @@
 # them in cm), the truth's own loss beside the result's, and for the association run how many
 # associated persons were matched to the wrong person (bench/score_association.cpp).
 # MS2-like drives use config/ms2.yaml. With --ideal, the ideal mask/cluster topics of clean
-# drives (no --raw, no --detect) instead. Bags are deleted after use.
-# Usage: scripts/association_validation.sh [--rig fieldsafe|ms2] [--frames N] [--ideal] [SEEDS...]
+# drives (no --raw, no --detect) instead. With --association-only, only the association run (for
+# its wrong-person count, when the counts run's time is better spent on more seeds). Bags are
+# deleted after use.
+# Usage: scripts/association_validation.sh [--rig fieldsafe|ms2] [--frames N] [--ideal]
+#        [--association-only] [SEEDS...]
 set -euo pipefail
 # shellcheck source=scripts/workspace.sh
 source "$(dirname "${BASH_SOURCE[0]}")/workspace.sh"
@@ -19,12 +22,14 @@ if [ -n "${TLC_BIN:-}" ]; then bin="$TLC_BIN"; else prepare_workspace --bench; f
 rig=fieldsafe
 frames=""
 ideal=0
+modes=(counts association)
 seeds=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --rig) rig="$2"; shift 2 ;;
     --frames) frames="$2"; shift 2 ;;
     --ideal) ideal=1; shift ;;
+    --association-only) modes=(association); shift ;;
     *) seeds+=("$1"); shift ;;
   esac
 done
@@ -63,7 +68,7 @@ for seed in "${seeds[@]}"; do
   truth="$out/$tag.truth.seed$seed.yaml"
   "$bin/make_synthetic_bag" --rig "$rig" "${gen[@]}" --frames "$frames" --seed "$seed" \
     --output "$bag" --truth "$truth" > "$out/$tag.gen.seed$seed.log" 2>&1
-  for mode in counts association; do
+  for mode in "${modes[@]}"; do
     result="$out/$tag.$mode.seed$seed.yaml"
     config=("${base[@]}")
     [ "$mode" = counts ] && config=(--config "$out/counts.$rig.yaml")
