@@ -5,18 +5,22 @@
 # (association), and one row per run says the pairs by rule and per minute of driving, the seconds
 # from the change to the first ERROR, and the new fit's signed error against the new truth
 # (rotation about the camera's x, y, z in deg, translation along them in cm).
-# Usage: scripts/drift_association_validation.sh [--noise clean|realistic] [--change ROT_DEG,TRANS_CM] [SEEDS...]
+# --association-only skips the counts runs (they do not change with the watch's association).
+# Usage: scripts/drift_association_validation.sh [--noise clean|realistic] [--change ROT_DEG,TRANS_CM]
+#        [--association-only] [SEEDS...]
 set -euo pipefail
 # shellcheck source=scripts/workspace.sh
 source "$(dirname "${BASH_SOURCE[0]}")/workspace.sh"
 if [ -n "${TLC_BIN:-}" ]; then bin="$TLC_BIN"; else prepare_workspace; fi
 noise=clean
 change=0.5,0
+modes=(counts association)
 seeds=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --noise) noise="$2"; shift 2 ;;
     --change) change="$2"; shift 2 ;;
+    --association-only) modes=(association); shift ;;
     *) seeds+=("$1"); shift ;;
   esac
 done
@@ -31,7 +35,7 @@ for seed in "${seeds[@]}"; do
   name="$noise.$change.$seed"
   "$bin/make_synthetic_bag" --frames 2400 --seed "$seed" --noise "$noise" --extrinsic-change-at 60 \
     --extrinsic-change "$change" --output "$out/$name.bag" --truth "$out/$name.truth.yaml" > /dev/null 2>&1
-  for mode in counts association; do
+  for mode in "${modes[@]}"; do
     config=()
     [ "$mode" = counts ] && config=(--config "$out/counts.yaml")
     "$bin/calibrate_bag" --bag "$out/$name.bag" --monitor --reference "$out/$name.truth.yaml" \

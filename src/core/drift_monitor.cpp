@@ -51,14 +51,29 @@ std::vector<CalibrationPair> DriftMonitor::lastPairs(std::size_t n) const {
   return out;
 }
 
+namespace {
+bool byCounts(const CalibrationPair& p) { return p.rule == PairRule::kCounts; }
+}  // namespace
+
 std::vector<CalibrationPair> DriftMonitor::pairsSince(std::uint64_t seq,
                                                       std::size_t at_most) const {
   std::vector<CalibrationPair> out;
   for (const Held& h : held_) {
     if (h.seq >= seq) out.push_back(h.pair);
   }
-  if (out.size() > at_most) out.erase(out.begin(), out.end() - static_cast<long>(at_most));
+  // The latest `at_most` of the count rule's pairs, with the association pairs among them.
+  std::size_t counts = static_cast<std::size_t>(std::count_if(out.begin(), out.end(), byCounts));
+  auto first = out.begin();
+  while (first != out.end() && (counts > at_most || (counts == at_most && !byCounts(*first)))) {
+    counts -= byCounts(*first) ? 1 : 0;
+    ++first;
+  }
+  out.erase(out.begin(), first);
   return out;
+}
+
+std::size_t DriftMonitor::countRulePairs(const std::vector<CalibrationPair>& pairs) {
+  return static_cast<std::size_t>(std::count_if(pairs.begin(), pairs.end(), byCounts));
 }
 
 void DriftMonitor::updateOffsets() {
@@ -140,9 +155,18 @@ std::optional<DriftRecord> DriftMonitor::addPair(CalibrationPair pair) {
       camera_, {pair}, LossConfig{calibration_.behind_camera_penalty_c1, PixelRule::kBilinear});
   const ImageOffset offset = pairImageOffset(bilinear, 0, reference_, {}, calibration_.num_threads);
   held_.push_back({next_seq_++, std::move(pair), offset});
+  // Enough for a window and for a new extrinsic on update_pairs count-rule pairs with the
+  // association pairs among them (at most 4x that in all, should the count rule keep nothing).
   const std::size_t keep =
       static_cast<std::size_t>(std::max(drift_.window_pairs, drift_.update_pairs));
-  while (held_.size() > keep) held_.pop_front();
+  std::size_t counts_held = 0;
+  for (const Held& h : held_) counts_held += byCounts(h.pair) ? 1 : 0;
+  while (held_.size() > keep) {
+    const std::size_t counts_after = counts_held - (byCounts(held_.front().pair) ? 1 : 0);
+    if (counts_after < keep && held_.size() <= 4 * keep) break;
+    counts_held = counts_after;
+    held_.pop_front();
+  }
   ++since_test_;
   // A window holds only pairs of the rig in use: after an accepted update none from before the
   // change it accepted (they show the old rig, and against the new reference they look like a
@@ -274,7 +298,7 @@ void DriftMonitor::fitCandidate(const Extrinsic& start) {
     if (h.seq == *change_seq_) c.change_stamp_s = h.pair.stamp_s;
   }
   c.stamp_s = pairs.back().stamp_s;
-  c.complete = pairs.size() >= static_cast<std::size_t>(drift_.update_pairs);
+  c.complete = countRulePairs(pairs) >= static_cast<std::size_t>(drift_.update_pairs);
   c.p_value = confirm_p_value_;
   c.first_warn_stamp_s = machine_.firstWarnStamp();
   c.first_error_stamp_s = machine_.firstErrorStamp();

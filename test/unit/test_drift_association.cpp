@@ -2,7 +2,8 @@
 // paired at the reference in use, as the calibration pairs them, so the watch sees about twice
 // the pairs on these streams; without pairByAssociation, or within the skip rule, they are passed
 // over; and association at the old reference does not hide a change: a 0.5 deg turn is confirmed
-// no later than by the count rule's pairs alone.
+// no later than by the count rule's pairs alone, and the new extrinsic rests on as many of the
+// count rule's pairs as without association.
 #include "thermal_lidar_calibration/core/drift_monitor.hpp"
 
 #include "../support/synthetic_pairs.hpp"
@@ -98,7 +99,7 @@ TEST(DriftAssociation, AssociationAtTheOldReferenceDoesNotHideATurn) {
       synthetic::bumpedExtrinsic(before, Eigen::Vector3d(0.3, -0.8, 0.5), 0.5, Eigen::Vector3d::Zero());
   std::vector<CalibrationPair> stream = drive(seenWith(before, 40, 41), seenWith(before, 40, 42), 0);
   const double bump_s = 0.1 * 400.0;  // the first frame after the turn
-  for (CalibrationPair& p : drive(seenWith(after, 60, 43), seenWith(after, 60, 44), 400)) stream.push_back(std::move(p));
+  for (CalibrationPair& p : drive(seenWith(after, 70, 43), seenWith(after, 70, 44), 400)) stream.push_back(std::move(p));
 
   const Watched with = watch(stream, true);
   const Watched counts = watch(stream, false);
@@ -111,6 +112,13 @@ TEST(DriftAssociation, AssociationAtTheOldReferenceDoesNotHideATurn) {
   EXPECT_GT(with.association_pairs, 60u);
   EXPECT_EQ(with.state, DriftState::kError);
   ASSERT_TRUE(with.candidate);
+  // The new extrinsic rests on monitor_update_pairs of the count rule's pairs, as without
+  // association, with the association pairs of that stretch besides.
+  EXPECT_TRUE(with.candidate->complete);
+  EXPECT_GT(with.candidate->pairs, static_cast<std::size_t>(DriftConfig{}.update_pairs));
+  ASSERT_TRUE(counts.candidate);
+  EXPECT_TRUE(counts.candidate->complete);
+  EXPECT_EQ(counts.candidate->pairs, static_cast<std::size_t>(DriftConfig{}.update_pairs));
   EXPECT_LT(rotationErrorRad(with.candidate->extrinsic, after), 0.15 * kDeg);
   EXPECT_LT(translationErrorM(with.candidate->extrinsic, after), 0.02);
 }

@@ -46,8 +46,9 @@ struct DriftConfig {
   double min_offset_y_px = 4.0;
   int folds = 3;           // monitor_folds: cross-fitting folds of the held-out test
   // monitor_update_pairs: the new extrinsic after a confirmed change is fitted on the pairs
-  // since the change; it is final once it rests on this many (a 30-pair window leaves the
-  // translation a few cm uncertain on a typical drive, 60 pairs about 1 cm).
+  // since the change; it is final once it rests on this many of the count rule's (a 30-pair
+  // window leaves the translation a few cm uncertain on a typical drive, 60 pairs about 1 cm),
+  // with the association pairs of that stretch besides.
   int update_pairs = 60;
   // monitor_update_full_significance: the new extrinsic is the simpler of a turn of the camera
   // about its own centre and a shift without a turn, unless the full pose predicts held-out

@@ -141,7 +141,12 @@ class DriftMonitor {
   std::size_t pairsSinceAccepted() const;
   // The held pairs' image offsets against reference_, worked out again after it changed.
   void updateOffsets();
+  // Held pairs from `seq` on: the latest `at_most` of the count rule's, with the association
+  // pairs among them (a new extrinsic rests on update_pairs count-rule pairs: association pairs
+  // come faster and from the same stretch of driving, so counted alone they would end the fit on
+  // a shorter stretch, with less varied geometry).
   std::vector<CalibrationPair> pairsSince(std::uint64_t seq, std::size_t at_most) const;
+  static std::size_t countRulePairs(const std::vector<CalibrationPair>& pairs);
   // After a window's test (`changed`: it counts as an extrinsic change; `before`: the state
   // before it): start over, confirm, place the change and fit the candidate as the state says.
   void followTest(const DriftRecord& record, bool changed, DriftState before);
@@ -161,7 +166,7 @@ class DriftMonitor {
   std::optional<double> timing_change_s_;
   // Issue 21: whether the changed window `test` is a timing change; sets record.timing_change_s.
   bool isTimingChange(const std::vector<CalibrationPair>& window, DriftRecord& record) const;
-  std::deque<Held> held_;   // the latest max(window_pairs, update_pairs) pairs
+  std::deque<Held> held_;   // the latest max(window_pairs, update_pairs) count-rule pairs and those among them
   std::uint64_t next_seq_ = 0;
   int since_test_ = 0;
   std::optional<std::uint64_t> change_seq_;  // first pair after the located change

@@ -156,7 +156,7 @@ void addDriftRows(ParameterTable<CoreParameters>& t) {
   drift.integer("monitor_folds", &DriftConfig::folds, kConfigRange, "",
                 "cross-fitting folds of the held-out test", "at most monitor_window_pairs / 3");
   drift.integer("monitor_update_pairs", &DriftConfig::update_pairs, kConfigRange, "",
-                "pairs since a confirmed change the new extrinsic is fitted on before it is final");
+                "count-rule pairs since a confirmed change the new extrinsic is fitted on before it is final (with the association pairs among them)");
   drift.real("monitor_update_full_significance", &DriftConfig::update_full_significance,
              kConfigRange, "",
              "the new extrinsic is the better of a turn about the camera centre and a shift, unless the "
