@@ -108,6 +108,31 @@ void dropRegionsWithoutWarmCore(const cv::Mat& image, const cv::Mat& labels, con
   *kept = std::move(warm);
 }
 
+// A region that is no person as a whole (too squat, or without a neck: two people side by side
+// whose heads touch, two riders on a scooter, the dip between their heads shallower than
+// head_dip_fraction) is cut at every valley of kFailedDipScale times that dip, and the cut is kept only when each part of a person's size
+// passes the person tests on its own (and at least two do): a warm car or wall patch whose top is
+// merely uneven leaves a part that is no person, and stays one rejected region.
+constexpr double kFailedDipScale = 0.5;
+template <typename FailureOf>
+std::vector<WarmRegion> splitFailedRegion(const cv::Mat& labels, const cv::Mat& opened, const WarmRegion& region,
+                                          const ThermalSegmenterConfig& c, const FailureOf& failureOf) {
+  std::vector<WarmRegion> parts = splitAtHeads(labels, opened, region, kFailedDipScale * c.head_dip_fraction);
+  if (parts.size() <= 1) return {region};
+  int people = 0;
+  for (WarmRegion& part : parts) {
+    part.split_part = true;
+    part.zones = measureZoneWidths(labels, part);
+    const std::string failure = failureOf(part);
+    if (failure.empty()) {
+      ++people;
+    } else if (failure != "too_small") {
+      return {region};
+    }
+  }
+  return people >= 2 ? parts : std::vector<WarmRegion>{region};
+}
+
 // The components of `labels` (stats and centroids as connectedComponentsWithStats gives them),
 // judged one by one and split at heads where a region is wide enough to hold people side by
 // side: the person regions, in label order; the others go to result->rejected.
@@ -145,6 +170,9 @@ std::vector<WarmRegion> judgeComponents(const ThermalSegmenterConfig& c, const c
     const double aspect = static_cast<double>(region.bbox.height) / region.bbox.width;
     if (aspect < c.split_max_aspect && failure != "too_large" && failure != "too_short") {
       std::vector<WarmRegion> parts = splitAtHeads(labels, opened, region, c.head_dip_fraction);
+      if (parts.size() <= 1 && !failure.empty()) {
+        parts = splitFailedRegion(labels, opened, region, c, failureOf);
+      }
       if (parts.size() > 1) {
         for (WarmRegion& part : parts) {
           part.split_part = true;

@@ -95,7 +95,9 @@ struct ThermalSegmenterConfig {
 
   // --- People side by side in one region: a region whose height / width is below
   // split_max_aspect is cut where its top profile dips head_dip_fraction of its height between
-  // two heads; each part then passes the shape filters on its own.
+  // two heads; each part then passes the shape filters on its own. A region that is no person as
+  // a whole is also cut at half that dip (heads touching), kept cut only when every part of a
+  // person's size is a person.
   double split_max_aspect = 3.0;     // thermal_split_max_aspect: one person standing is ~3-4, two side by side ~2; (0, 100]
   double head_dip_fraction = 0.08;   // thermal_head_dip_fraction: of the region's height; (0, 1]
 

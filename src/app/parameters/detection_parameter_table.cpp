@@ -96,7 +96,8 @@ void addThermalRows(ParameterTable<DetectionParameters>& t) {
   th.real("thermal_split_max_aspect", &ThermalSegmenterConfig::split_max_aspect, kConfigRange, "",
           "a region whose height / width is below this is searched for people side by side");
   th.real("thermal_head_dip_fraction", &ThermalSegmenterConfig::head_dip_fraction, kConfigRange, "",
-          "such a region is cut where its top profile dips this fraction of its height between two heads");
+          "such a region is cut where its top profile dips this fraction of its height between two heads; one that is "
+          "no person as a whole also at half this dip, if every part of a person's size is then a person");
   th.integer("thermal_size_history", &ThermalSegmenterConfig::size_history, kConfigRange, "",
              "candidates of recent frames from which the height people have at each foot row is learned; 0 = no size check");
   th.integer("thermal_size_min_samples", &ThermalSegmenterConfig::size_min_samples, kConfigRange, "",
