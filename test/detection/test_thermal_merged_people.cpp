@@ -1,5 +1,5 @@
-// Thermal person segmentation where people merge into one warm region: the cases that fooled
-// the segmenter on real night street images (LLVIP).
+// Thermal person segmentation where people merge into one warm region, or one person falls
+// apart in two: the cases that fooled the segmenter on real night street images (LLVIP).
 
 #include "thermal_lidar_calibration/detection/thermal_person_segmenter.hpp"
 
@@ -83,6 +83,37 @@ TEST(ThermalMergedPeople, AWarmPatchWithAnUnevenTopIsNotCutIntoPeople) {
   const auto result = ThermalPersonSegmenter().segment(image);
   EXPECT_TRUE(result.people.empty()) << describe(result);
   EXPECT_EQ(result.rejected.size(), 1u) << describe(result);
+}
+
+TEST(ThermalMergedPeople, PersonCutAtTheWaistByAColdBandIsJoined) {
+  // LLVIP: a person whose belt (or a cable in front) is as cold as the street: the head and
+  // torso pass as a short person (a wrong box), the legs fail alone.
+  cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 63);
+  drawPerson(image, 300, 150, 160, 307.0, 301.0);
+  fillKelvin(image, cv::Rect(270, 150 + 70, 60, 8), 288.0);  // 8 px band at 44-49 % of the height
+  const auto result = ThermalPersonSegmenter().segment(image);
+  ASSERT_EQ(result.people.size(), 1u) << describe(result);
+  EXPECT_NEAR(result.people[0].bbox.y, 150, 2);
+  EXPECT_NEAR(result.people[0].bbox.height, 160, 3);
+  EXPECT_TRUE(result.rejected.empty()) << describe(result);
+  // A band as high as a third of the person is no thin band: the parts stay apart.
+  cv::Mat wide = thermalBackground(kFrame, 288.0, 0.1, 64);
+  drawPerson(wide, 300, 150, 160, 307.0, 301.0);
+  fillKelvin(wide, cv::Rect(270, 150 + 70, 60, 50), 288.0);
+  const auto apart = ThermalPersonSegmenter().segment(wide);
+  for (const auto& p : apart.people) EXPECT_LT(p.bbox.height, 120) << describe(apart);
+}
+
+TEST(ThermalMergedPeople, TwoPeopleOneAboveTheOtherAreNeverJoined) {
+  // People walking one behind the other, seen from above: the farther one's feet end just above
+  // the nearer one's head. Both are people on their own, so no join applies.
+  cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 65);
+  drawPerson(image, 300, 60, 120, 307.0, 301.0);   // farther: feet at row 180
+  drawPerson(image, 305, 186, 150, 307.0, 301.0);  // nearer: head from row 186
+  const auto result = ThermalPersonSegmenter().segment(image);
+  ASSERT_EQ(result.people.size(), 2u) << describe(result);
+  EXPECT_LT(result.people[0].bbox.height, 125);
+  EXPECT_LT(result.people[1].bbox.height, 155);
 }
 
 }  // namespace
