@@ -1,5 +1,6 @@
 #include "thermal_lidar_calibration/detection/thermal_person_segmenter.hpp"
 
+#include "cold_band_join.hpp"
 #include "thermal_regions.hpp"
 
 #include <opencv2/imgproc.hpp>
@@ -131,85 +132,6 @@ std::vector<WarmRegion> splitFailedRegion(const cv::Mat& labels, const cv::Mat& 
     }
   }
   return people >= 2 ? parts : std::vector<WarmRegion>{region};
-}
-
-// A person cut in two by a cold band across the body (a belt, a cable in front, a colder coat
-// over warmer trousers): the upper part may pass as a short person, the lower one (legs, no
-// neck) fails. A failed region whose top lies at most kMaxColdBandFraction of the joined height
-// below the bottom of a region above it, the two overlapping by half the narrower's columns, is
-// joined to it when the whole passes the person tests. Two people are never joined: the lower
-// region must have failed on its own. Relabels the joined pixels in `labels`.
-constexpr double kMaxColdBandFraction = 0.15;
-struct FailedRegion {
-  WarmRegion region;
-  std::string reason;
-};
-bool joinable(const WarmRegion& upper, const WarmRegion& lower) {
-  const cv::Rect& u = upper.bbox;
-  const cv::Rect& l = lower.bbox;
-  const int overlap = std::min(u.x + u.width, l.x + l.width) - std::max(u.x, l.x);
-  const int gap = l.y - (u.y + u.height);
-  const int joined_height = std::max(u.y + u.height, l.y + l.height) - u.y;
-  return overlap >= 0.5 * std::min(u.width, l.width) && gap >= 0 && gap <= kMaxColdBandFraction * joined_height;
-}
-WarmRegion joined(const WarmRegion& upper, const WarmRegion& lower) {
-  WarmRegion both = upper;
-  both.bbox = upper.bbox | lower.bbox;
-  both.area_px = upper.area_px + lower.area_px;
-  both.centroid = (upper.centroid * upper.area_px + lower.centroid * lower.area_px) / both.area_px;
-  return both;
-}
-void relabel(cv::Mat& labels, const cv::Rect& box, int from, int to) {
-  for (int y = box.y; y < box.y + box.height; ++y) {
-    int* row = labels.ptr<int>(y);
-    for (int x = box.x; x < box.x + box.width; ++x) {
-      if (row[x] == from) row[x] = to;
-    }
-  }
-}
-template <typename FailureOf>
-void joinAcrossColdBands(cv::Mat& labels, const FailureOf& failureOf, std::vector<WarmRegion>* kept,
-                         std::vector<FailedRegion>* failed) {
-  for (std::size_t i = 0; i < failed->size();) {
-    const FailedRegion& lower = (*failed)[i];
-    bool done = false;
-    if (lower.reason != "too_large" && lower.reason != "cut_by_border") {
-      // The candidates above: people (whole regions, not parts of a split one) and other failures.
-      std::vector<WarmRegion*> uppers;
-      for (WarmRegion& r : *kept) {
-        if (!r.split_part) uppers.push_back(&r);
-      }
-      for (std::size_t j = 0; j < failed->size(); ++j) {
-        if (j != i) uppers.push_back(&(*failed)[j].region);
-      }
-      for (WarmRegion* upper : uppers) {
-        if (!joinable(*upper, lower.region)) continue;
-        relabel(labels, lower.region.bbox, lower.region.label, upper->label);
-        WarmRegion both = joined(*upper, lower.region);
-        both.zones = measureZoneWidths(labels, both);
-        if (!failureOf(both).empty()) {
-          relabel(labels, lower.region.bbox, upper->label, lower.region.label);
-          continue;
-        }
-        const bool upper_was_kept = upper >= kept->data() && upper < kept->data() + kept->size();
-        if (upper_was_kept) {
-          *upper = both;
-          failed->erase(failed->begin() + static_cast<std::ptrdiff_t>(i));
-        } else {
-          const std::size_t j = static_cast<std::size_t>(
-              std::find_if(failed->begin(), failed->end(), [&](const FailedRegion& f) { return &f.region == upper; }) -
-              failed->begin());
-          kept->push_back(both);
-          // Erase the higher index first so the lower one stays valid.
-          failed->erase(failed->begin() + static_cast<std::ptrdiff_t>(std::max(i, j)));
-          failed->erase(failed->begin() + static_cast<std::ptrdiff_t>(std::min(i, j)));
-        }
-        done = true;
-        break;
-      }
-    }
-    i = done ? 0 : i + 1;  // a joined region may take a third part below it
-  }
 }
 
 // The components of `labels` (stats and centroids as connectedComponentsWithStats gives them),

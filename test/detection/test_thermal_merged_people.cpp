@@ -104,6 +104,17 @@ TEST(ThermalMergedPeople, PersonCutAtTheWaistByAColdBandIsJoined) {
   for (const auto& p : apart.people) EXPECT_LT(p.bbox.height, 120) << describe(apart);
 }
 
+TEST(ThermalMergedPeople, AWarmBollardBelowAPersonsFeetIsNotJoinedToThePerson) {
+  // LLVIP's streets have warm bollards; seen from above, one may stand just below a person's feet.
+  // The stride spans more than twice the bollard's top: the body does not go on across the gap.
+  cv::Mat image = thermalBackground(kFrame, 288.0, 0.1, 66);
+  drawPerson(image, 300, 100, 160, 307.0, 301.0);      // feet at row 260, legs x 289-311
+  fillKelvin(image, cv::Rect(296, 266, 8, 34), 303.0);  // the bollard, 6 px below
+  const auto result = ThermalPersonSegmenter().segment(image);
+  ASSERT_EQ(result.people.size(), 1u) << describe(result);
+  EXPECT_NEAR(result.people[0].bbox.height, 160, 3) << describe(result);
+}
+
 TEST(ThermalMergedPeople, TwoPeopleOneAboveTheOtherAreNeverJoined) {
   // People walking one behind the other, seen from above: the farther one's feet end just above
   // the nearer one's head. Both are people on their own, so no join applies.
