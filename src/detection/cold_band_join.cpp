@@ -68,31 +68,30 @@ void joinAcrossColdBands(cv::Mat& labels, const std::function<std::string(const 
     const FailedRegion& lower = (*failed)[i];
     bool done = false;
     if (lower.reason != "too_large" && lower.reason != "cut_by_border") {
-      // The candidates above: people (whole regions, not parts of a split one) and other failures.
-      std::vector<WarmRegion*> uppers;
-      for (WarmRegion& r : *kept) {
-        if (!r.split_part) uppers.push_back(&r);
+      // The candidates above: people (whole regions, not parts of a split one) and other failures,
+      // as (in kept, index).
+      std::vector<std::pair<bool, std::size_t>> uppers;
+      for (std::size_t k = 0; k < kept->size(); ++k) {
+        if (!(*kept)[k].split_part) uppers.emplace_back(true, k);
       }
       for (std::size_t j = 0; j < failed->size(); ++j) {
-        if (j != i) uppers.push_back(&(*failed)[j].region);
+        if (j != i) uppers.emplace_back(false, j);
       }
-      for (WarmRegion* upper : uppers) {
-        if (!joinable(labels, *upper, lower.region)) continue;
-        relabel(labels, lower.region.bbox, lower.region.label, upper->label);
-        WarmRegion both = joined(*upper, lower.region);
+      for (const auto& [in_kept, j] : uppers) {
+        WarmRegion& upper = in_kept ? (*kept)[j] : (*failed)[j].region;
+        if (!joinable(labels, upper, lower.region)) continue;
+        // The lower region starts below the upper one's last row: its box holds no upper pixel.
+        relabel(labels, lower.region.bbox, lower.region.label, upper.label);
+        WarmRegion both = joined(upper, lower.region);
         both.zones = measureZoneWidths(labels, both);
         if (!failureOf(both).empty()) {
-          relabel(labels, lower.region.bbox, upper->label, lower.region.label);
+          relabel(labels, lower.region.bbox, upper.label, lower.region.label);
           continue;
         }
-        const bool upper_was_kept = upper >= kept->data() && upper < kept->data() + kept->size();
-        if (upper_was_kept) {
-          *upper = both;
+        if (in_kept) {
+          upper = both;
           failed->erase(failed->begin() + static_cast<std::ptrdiff_t>(i));
         } else {
-          const std::size_t j = static_cast<std::size_t>(
-              std::find_if(failed->begin(), failed->end(), [&](const FailedRegion& f) { return &f.region == upper; }) -
-              failed->begin());
           kept->push_back(both);
           // Erase the higher index first so the lower one stays valid.
           failed->erase(failed->begin() + static_cast<std::ptrdiff_t>(std::max(i, j)));
