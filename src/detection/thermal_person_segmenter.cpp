@@ -111,9 +111,10 @@ void dropRegionsWithoutWarmCore(const cv::Mat& image, const cv::Mat& labels, con
 
 // A region that is no person as a whole (too squat, or without a neck: two people side by side
 // whose heads touch, two riders on a scooter, the dip between their heads shallower than
-// head_dip_fraction) is cut at every valley of kFailedDipScale times that dip, and the cut is kept only when each part of a person's size
-// passes the person tests on its own (and at least two do): a warm car or wall patch whose top is
-// merely uneven leaves a part that is no person, and stays one rejected region.
+// head_dip_fraction) is cut at every valley of kFailedDipScale times that dip, and the cut is
+// kept only when each part of a person's size passes the person tests on its own (and at least
+// two do): a warm car or wall patch whose top is merely uneven leaves a part that is no person,
+// and stays one rejected region.
 constexpr double kFailedDipScale = 0.5;
 template <typename FailureOf>
 std::vector<WarmRegion> splitFailedRegion(const cv::Mat& labels, const cv::Mat& opened, const WarmRegion& region,
