@@ -138,7 +138,10 @@ void judgeCoverage(const Coverage& cov, const VerdictConfig& c, std::vector<Find
     if (static_cast<int>(count) >= minimum) return;
     out.push_back(
         {count == 0 ? Verdict::kCollectMore : Verdict::kUsable,
-         (count == 0 ? "no people " : format("only %.0f people ", count)) + what + ": " + todo});
+         (count == 0   ? "no people "
+          : count == 1 ? std::string("only 1 person ")
+                       : format("only %.0f people ", count)) +
+             what + ": " + todo});
   };
   const std::string split = format("%.3g m", cov.near_far_split_m);
   range_finding(cov.people_near, c.min_people_near, "nearer than " + split,

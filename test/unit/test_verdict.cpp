@@ -93,6 +93,14 @@ TEST(Verdict, FewPairsNoNearPeopleAndFewPlaces) {
   EXPECT_TRUE(mentions(r, "people stood in only 10 distinct places"));
 }
 
+TEST(Verdict, OnePersonNearIsOnePersonAndTwoArePeople) {
+  Coverage c = wellCovered();
+  c.people_near = 1;
+  EXPECT_TRUE(mentions(judgeQuality(c, tight(), VerdictConfig{}), "only 1 person nearer than 10 m: have people walk closer"));
+  c.people_near = 2;
+  EXPECT_TRUE(mentions(judgeQuality(c, tight(), VerdictConfig{}), "only 2 people nearer than 10 m"));
+}
+
 TEST(Verdict, WithoutAnUncertaintyAtBestUsable) {
   const VerdictReport r = judgeQuality(wellCovered(), std::nullopt, VerdictConfig{});
   EXPECT_EQ(r.verdict, Verdict::kUsable);
