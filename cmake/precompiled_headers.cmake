@@ -51,9 +51,12 @@ foreach(lib ros node tools nodelets synthetic_bag)
   tlc_precompile(HEADERS ${TLC_PCH_ROS_FREE} ${TLC_PCH_ROS} TARGETS thermal_lidar_calibration_${lib})
 endforeach()
 
-# The tests (gtest): those that link the ROS adapters (directly or through node/, tools/), and those
-# that link only ROS-free parts.
+# The tests (gtest): those that link the ROS adapters (directly or through node/, tools/), those
+# that link the detectors (directly or through app/: PCL's targets add -fPIC, which a precompiled
+# header must share; GCC warned -Winvalid-pch for each and parsed the headers itself), and those
+# that link only other ROS-free parts.
 set(ros_tests "")
+set(detection_tests "")
 set(ros_free_tests "")
 foreach(dir ${PROJECT_SOURCE_DIR} ${PROJECT_SOURCE_DIR}/test)
   get_property(targets DIRECTORY ${dir} PROPERTY BUILDSYSTEM_TARGETS)
@@ -64,10 +67,13 @@ foreach(dir ${PROJECT_SOURCE_DIR} ${PROJECT_SOURCE_DIR}/test)
     get_target_property(links ${target} LINK_LIBRARIES)
     if(links MATCHES "thermal_lidar_calibration_(ros|node|tools|synthetic_bag)(;|$)")
       list(APPEND ros_tests ${target})
+    elseif(links MATCHES "thermal_lidar_calibration_(app|detection|detection_tool)(;|$)")
+      list(APPEND detection_tests ${target})
     elseif(links MATCHES "thermal_lidar_calibration_")
       list(APPEND ros_free_tests ${target})
     endif()
   endforeach()
 endforeach()
 tlc_precompile(HEADERS ${TLC_PCH_ROS_FREE} <gtest/gtest.h> TARGETS ${ros_free_tests})
+tlc_precompile(HEADERS ${TLC_PCH_ROS_FREE} <gtest/gtest.h> TARGETS ${detection_tests})
 tlc_precompile(HEADERS ${TLC_PCH_ROS_FREE} ${TLC_PCH_ROS} <gtest/gtest.h> TARGETS ${ros_tests})
