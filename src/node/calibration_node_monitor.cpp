@@ -63,10 +63,9 @@ void CalibrationNode::startMonitoring(const Extrinsic& reference, const std::str
   if (params_.core.calibration.time_offset.mode == TimeOffsetMode::kNone) time_offset_s.reset();
   // Issue 23: the watch pairs by association at the reference as the calibration did, so it gets
   // the frames the count rule passes over too.
-  const bool associate = pairsByAssociation(params_.core.pairing, params_.core.calibration);
-  drift_ = std::make_unique<DriftWatchWorker>(
-      builder_->camera(), reference, params_.core.drift, params_.core.calibration, time_offset_s,
-      associate ? std::optional<AssociationPairing>(associationPairing(params_.core)) : std::nullopt);
+  drift_ = std::make_unique<DriftWatchWorker>(builder_->camera(), reference, params_.core.drift,
+                                              params_.core.calibration, time_offset_s,
+                                              associationIfAsked(params_.core));
   drift_reference_ = origin;
   last_drift_state_ = DriftState::kOk;
   last_timing_state_ = DriftState::kOk;

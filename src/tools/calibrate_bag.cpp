@@ -129,7 +129,6 @@ std::string besideOutput(const std::string& output, const std::string& suffix) {
 int runDriftWatch(const CalibrateBagOptions& options, const CoreParameters& params,
                   const CameraModel& camera, const DatasetBuilder& builder, const Extrinsic& reference,
                   ProgressLine& progress) {
-  const bool associate = pairsByAssociation(params.pairing, params.calibration);
   const DriftTimeline timeline = watchDrift(
       camera, inOfferOrder(builder.pairs(), builder.candidates()), reference, params.drift, params.calibration,
       [&](std::size_t done, std::size_t total) {
@@ -140,7 +139,7 @@ int runDriftWatch(const CalibrateBagOptions& options, const CoreParameters& para
       params.calibration.time_offset.mode == TimeOffsetMode::kNone ? std::nullopt
                                                                    : readAppliedTimeOffset(options.reference),
       // Issue 23: the frames the count rule did not keep pair by association at the reference.
-      associate ? std::optional<AssociationPairing>(associationPairing(params)) : std::nullopt);
+      associationIfAsked(params));
   progress.finish();
   const std::string lidar = builder.lidarFrame().empty() ? "lidar" : builder.lidarFrame();
   const std::string cam = builder.cameraFrame().empty() ? "camera" : builder.cameraFrame();

@@ -42,4 +42,9 @@ AssociationPairing associationPairing(const CoreParameters& p) {
   return a;
 }
 
+std::optional<AssociationPairing> associationIfAsked(const CoreParameters& p) {
+  if (!pairsByAssociation(p.pairing, p.calibration)) return std::nullopt;
+  return associationPairing(p);
+}
+
 }  // namespace thermal_lidar_calibration
