@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 #include <string>
 
 namespace thermal_lidar_calibration {
@@ -116,15 +117,23 @@ void dropRegionsWithoutWarmCore(const cv::Mat& image, const cv::Mat& labels, con
 // two do): a warm car or wall patch whose top is merely uneven leaves a part that is no person,
 // and stays one rejected region.
 constexpr double kFailedDipScale = 0.5;
+// The parts of a split region, marked and measured for the person tests.
+std::vector<WarmRegion> measuredParts(const cv::Mat& labels, std::vector<WarmRegion> parts) {
+  for (WarmRegion& part : parts) {
+    part.split_part = true;
+    part.zones = measureZoneWidths(labels, part);
+  }
+  return parts;
+}
+// The region cut as above (measured parts), or the region alone when the cut is not kept.
 template <typename FailureOf>
 std::vector<WarmRegion> splitFailedRegion(const cv::Mat& labels, const cv::Mat& opened, const WarmRegion& region,
                                           const ThermalSegmenterConfig& c, const FailureOf& failureOf) {
   std::vector<WarmRegion> parts = splitAtHeads(labels, opened, region, kFailedDipScale * c.head_dip_fraction);
   if (parts.size() <= 1) return {region};
+  parts = measuredParts(labels, std::move(parts));
   int people = 0;
-  for (WarmRegion& part : parts) {
-    part.split_part = true;
-    part.zones = measureZoneWidths(labels, part);
+  for (const WarmRegion& part : parts) {
     const std::string failure = failureOf(part);
     if (failure.empty()) {
       ++people;
@@ -174,13 +183,13 @@ std::vector<WarmRegion> judgeComponents(const ThermalSegmenterConfig& c, const c
     const double aspect = static_cast<double>(region.bbox.height) / region.bbox.width;
     if (aspect < c.split_max_aspect && failure != "too_large" && failure != "too_short") {
       std::vector<WarmRegion> parts = splitAtHeads(labels, opened, region, c.head_dip_fraction);
-      if (parts.size() <= 1 && !failure.empty()) {
+      if (parts.size() > 1) {
+        parts = measuredParts(labels, std::move(parts));
+      } else if (!failure.empty()) {
         parts = splitFailedRegion(labels, opened, region, c, failureOf);
       }
       if (parts.size() > 1) {
-        for (WarmRegion& part : parts) {
-          part.split_part = true;
-          part.zones = measureZoneWidths(labels, part);
+        for (const WarmRegion& part : parts) {
           const std::string part_failure = failureOf(part);
           if (part_failure.empty()) {
             kept.push_back(part);
