@@ -24,15 +24,11 @@ import yaml
 from std_msgs.msg import UInt32
 from thermal_lidar_calibration.msg import CalibrationStatus
 
+from package_executables import executable
+
 NODE = "/calibration_node"
 PKG = "thermal_lidar_calibration"
 
-
-def executable(name):
-    """The package's built executable (catkin_find, as play_synthetic_bag.sh finds the generator:
-    rosrun would walk the whole checkout, the catkin workspace in it included, at every start)."""
-    return subprocess.check_output(["catkin_find", "--first-only", "--libexec", PKG, name],
-                                   universal_newlines=True).strip()
 # The deadline of every wait: it only stops a hung test (a slow machine gets there later).
 HANG_GUARD_S = 120
 

@@ -13,14 +13,9 @@ import unittest
 import rospy
 import rostest
 
+from package_executables import executable
+
 PKG = "thermal_lidar_calibration"
-
-
-def executable(name):
-    """The package's built executable (catkin_find, as play_synthetic_bag.sh finds the generator:
-    rosrun would walk the whole checkout, the catkin workspace in it included, at every start)."""
-    return subprocess.check_output(["catkin_find", "--first-only", "--libexec", PKG, name],
-                                   universal_newlines=True).strip()
 
 
 class StartChecks(unittest.TestCase):
