@@ -11,6 +11,7 @@
 #   fs_endstamp60                       60 ms late, end-of-scan stamps with per-point times
 #   fs_sweep60                          60 ms late, end-of-scan stamps, no per-point times
 #   fs_raw60                            60 ms late, raw sensors (--raw, calibrate_bag --detect)
+#   fs_raw_sync                         raw sensors, synchronised: what fs_raw60 compares with
 #   fs_steady60                         60 ms late, steady straight driving, nobody walking
 # Usage: scripts/timing_validation.sh [--cases "A B"] [--noise "clean realistic"]
 #          [--modes "default none"] [SEEDS...]
@@ -23,7 +24,7 @@ set -euo pipefail
 # shellcheck source=scripts/workspace.sh
 source "$(dirname "${BASH_SOURCE[0]}")/workspace.sh"
 prepare_workspace
-cases="fs_late60 fs_early40 fs_sync ms2_late60 ms2_early40 ms2_sync fs_endstamp60 fs_sweep60 fs_raw60 fs_steady60"
+cases="fs_late60 fs_early40 fs_sync ms2_late60 ms2_early40 ms2_sync fs_endstamp60 fs_sweep60 fs_raw60 fs_raw_sync fs_steady60"
 noises="clean realistic"
 wanted="default none"
 seeds=()
@@ -51,13 +52,14 @@ generator() {  # case -> make_synthetic_bag flags
     fs_endstamp60) echo "--rig fieldsafe ${drive[*]} --camera-time-offset 0.06 --lidar-stamp end --lidar-point-time" ;;
     fs_sweep60) echo "--rig fieldsafe ${drive[*]} --camera-time-offset 0.06 --lidar-stamp end" ;;
     fs_raw60) echo "--rig fieldsafe ${drive[*]} --camera-time-offset 0.06 --raw" ;;
+    fs_raw_sync) echo "--rig fieldsafe ${drive[*]} --raw" ;;
     fs_steady60) echo "--rig fieldsafe --speed-profile steady --walking-fraction 0 --camera-time-offset 0.06" ;;
     *) echo "unknown case $1" >&2; exit 2 ;;
   esac
 }
 modes() {  # case -> the runs on its bag
   case "$1" in
-    fs_sync | ms2_sync | fs_late60 | ms2_late60) echo "default none" ;;
+    fs_sync | ms2_sync | fs_late60 | ms2_late60 | fs_raw_sync) echo "default none" ;;
     *) echo "default" ;;
   esac
 }
