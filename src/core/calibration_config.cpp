@@ -61,7 +61,8 @@ const ParameterRanges<RefineConfig>& RefineConfig::ranges() {
       .add("refine_initial_step_trans_m", &RefineConfig::initial_step_trans_m, aboveRange(0, 10))
       .add("refine_min_step_rot_rad", &RefineConfig::min_step_rot_rad, aboveRange(0, 1))
       .add("refine_min_step_trans_m", &RefineConfig::min_step_trans_m, aboveRange(0, 10))
-      .add("refine_max_evaluations", &RefineConfig::max_evaluations, IntRange{1, 100000000});
+      .add("refine_max_evaluations", &RefineConfig::max_evaluations, IntRange{1, 100000000})
+      .add("refine_ring_alias_turns", &RefineConfig::ring_alias_turns, IntRange{0, 5});
   return ranges;
 }
 

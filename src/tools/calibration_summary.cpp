@@ -59,6 +59,13 @@ std::string formatCalibrationSummary(const SummaryInput& in) {
   s << "  loss             " << fmt("%.4f px (bilinear %.4f; before refinement %.4f)", r.loss,
                                     r.loss_bilinear, r.evolution_loss)
     << "\n";
+  if (r.ring_alias_turn != 0) {
+    // The refinement had ended in a basin a ring spacing or more off (ring_alias.hpp): say so.
+    s << "  ring alias       "
+      << fmt("the refined pose lay %.0f ring spacing(s) of %.2f deg off; refined again from there",
+             std::abs(static_cast<double>(r.ring_alias_turn)), r.ring_spacing_rad * kDeg, 0)
+      << "\n";
+  }
   s << "  time offset      " << timeOffsetText(r, in.quality ? in.quality->uncertainty : std::nullopt);
   if (r.time_offset_mode != TimeOffsetMode::kNone) {
     s << fmt("; loss %.4f px with it, %.4f px without", r.loss, r.loss_without_timing, 0);

@@ -57,6 +57,9 @@ struct RefineConfig {
   // After each refinement, re-select the inliers among all pairs with Eq. (1) <= threshold_sample
   // and refine again until the set is stable; false refines once on Algorithm 2's inliers.
   bool reselect_inliers = true;
+  // After the first refinement, refine again from the pose turned by +-1 .. +-ring_alias_turns
+  // ring spacings about the camera's x axis and keep a clearly better one (ring_alias.hpp); 0: off.
+  int ring_alias_turns = 2;
   static const ParameterRanges<RefineConfig>& ranges();  // checked by validate()
   void validate() const;
 };

@@ -48,6 +48,13 @@ struct CalibrationResult {
   // With refine = local, the vertical centring after the refinement (vertical_centring.hpp):
   // `extrinsic` is its result; applied = false (and why) when it was skipped.
   VerticalCentringOutcome vertical_centring;
+  // With refine = local and refine.ring_alias_turns > 0 (ring_alias.hpp): the rings' elevation
+  // spacing found among the points used (0: none found, nothing tried), the turned starts
+  // refined, and the turn kept, in ring spacings (+ turns the camera down about its x axis; 0: the
+  // refined pose stayed).
+  double ring_spacing_rad = 0.0;
+  int ring_alias_tried = 0;
+  int ring_alias_turn = 0;
   std::size_t pairs_used = 0;
   std::size_t pairs_collected = 0;
   int outlier_fits_accepted = 0;    // Algorithm 2 fits with ratio_inliers >= ratio_solution

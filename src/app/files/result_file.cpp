@@ -133,6 +133,13 @@ void emitRun(YAML::Emitter& out, const CalibrationResult& result, const ResultCo
   out << YAML::Key << "loss" << YAML::Value << result.evolution_loss;
   out << YAML::Key << "outlier_fits_accepted" << YAML::Value << result.outlier_fits_accepted;
   out << YAML::EndMap;
+  if (result.ring_alias_tried > 0 || result.ring_spacing_rad > 0.0) {
+    out << YAML::Key << "ring_alias" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "spacing_deg" << YAML::Value << result.ring_spacing_rad * 180.0 / M_PI;
+    out << YAML::Key << "starts_refined" << YAML::Value << result.ring_alias_tried;
+    out << YAML::Key << "turn_kept" << YAML::Value << result.ring_alias_turn;
+    out << YAML::EndMap;
+  }
 
   out << YAML::Key << "algorithm" << YAML::Value
       << (context.parameters.calibration.algorithm == Algorithm::kPlain ? 1 : 2);

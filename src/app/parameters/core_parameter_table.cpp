@@ -252,6 +252,10 @@ void addOptimizerRows(ParameterTable<CoreParameters>& t) {
   refine.boolean("refine_reselect_inliers", &RefineConfig::reselect_inliers,
                  "after refining, re-select inliers among all pairs (Eq. 1 <= threshold_sample_px) "
                  "and refine again until stable");
+  refine.integer("refine_ring_alias_turns", &RefineConfig::ring_alias_turns, kConfigRange, "",
+                 "after the first refinement, refine again from the pose turned by up to this many LiDAR ring "
+                 "spacings up and down the image, and keep one whose loss is clearly lower (a fit one ring off "
+                 "the truth is a local minimum); 0: off");
 }
 
 }  // namespace
