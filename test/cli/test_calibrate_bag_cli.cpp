@@ -203,6 +203,20 @@ TEST_F(CalibrateBagCli, BadConfigValueNamesKeyValueAndRange) {
       << e;
 }
 
+TEST_F(CalibrateBagCli, BadRingAliasTurnsNamesKeyValueAndRange) {
+  BagSpec spec;
+  spec.frames = 4;
+  for (const std::string value : {"-1", "6", "two"}) {
+    std::ofstream(dir_ + "/bad.yaml") << "refine_ring_alias_turns: " << value << "\n";
+    const RunResult r = run("--bag '" + bag(spec) + "' --config '" + dir_ + "/bad.yaml' " + common());
+    const std::string e = expectOneLineError(r);
+    EXPECT_NE(e.find("parameter 'refine_ring_alias_turns' = " + std::string(value == "two" ? "'two'" : value) +
+                     ": must be an integer in [0, 5]"),
+              std::string::npos)
+        << e;
+  }
+}
+
 TEST_F(CalibrateBagCli, CalibratesASyntheticBag) {
   BagSpec spec;
   const std::string truth = dir_ + "/truth.yaml";
