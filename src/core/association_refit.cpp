@@ -196,6 +196,10 @@ AssociatedCalibration calibrateWithAssociation(const CameraModel& camera, std::v
     evaluations += refit.evaluations;
     points += refit.points_projected;
     carryOver(first, refit);
+    // The ring alias check of every fit so far counts (a turn kept in an earlier round moved the
+    // start of this one).
+    refit.ring_alias_tried += out.result.ring_alias_tried;
+    if (refit.ring_alias_turn == 0) refit.ring_alias_turn = out.result.ring_alias_turn;
     out.result = std::move(refit);
     out.pairs = std::move(enlarged);
     out.association_pairs = associated.size();
