@@ -15,7 +15,10 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <utility>
 #include <vector>
 
 namespace thermal_lidar_calibration {
@@ -104,6 +107,36 @@ inline std::vector<CalibrationPair> makeSyntheticPairs(const CameraModel& camera
     pairs.push_back(std::move(pair));
   }
   return pairs;
+}
+
+// The pairs' LiDAR points as a spinning LiDAR (at the LiDAR frame's origin) would see them: each
+// point's height moved onto the nearest ring (its elevation a whole number of `spacing_deg`), kept
+// where that ring still meets its person (between the label's lowest and highest points), so the
+// masks hold every point at the truth.
+inline void snapToRings(std::vector<CalibrationPair>& pairs, double spacing_deg) {
+  const double spacing = spacing_deg * M_PI / 180.0;
+  for (CalibrationPair& pair : pairs) {
+    std::map<std::int32_t, std::pair<float, float>> extent;  // label -> lowest, highest z
+    for (std::size_t i = 0; i < pair.points.size(); ++i) {
+      auto found = extent.emplace(pair.labels[i], std::make_pair(pair.points[i].z(), pair.points[i].z())).first;
+      found->second.first = std::min(found->second.first, pair.points[i].z());
+      found->second.second = std::max(found->second.second, pair.points[i].z());
+    }
+    std::vector<Eigen::Vector3f> kept;
+    std::vector<std::int32_t> labels;
+    for (std::size_t i = 0; i < pair.points.size(); ++i) {
+      Eigen::Vector3f p = pair.points[i];
+      const double horizontal = std::hypot(double(p.x()), double(p.y()));
+      const double z = horizontal * std::tan(std::round(std::atan2(double(p.z()), horizontal) / spacing) * spacing);
+      const auto& [lowest, highest] = extent.at(pair.labels[i]);
+      if (z < lowest || z > highest) continue;
+      p.z() = static_cast<float>(z);
+      kept.push_back(p);
+      labels.push_back(pair.labels[i]);
+    }
+    pair.points = std::move(kept);
+    pair.labels = std::move(labels);
+  }
 }
 
 // A frame the count rule rejects, made of a pair: the same people plus a post the LiDAR sees and

@@ -185,3 +185,21 @@ TEST(AssociationRefit, BadSettingsAreRefused) {
   pairing.association.max_rounds = 0;
   EXPECT_THROW(pairing.validate(), std::invalid_argument);
 }
+
+// The ring alias check (ring_alias.hpp) runs in the first fit and in every refit; the result
+// counts them all (a turn kept in an early round moved every later round's start).
+TEST(AssociationRefit, TheResultCountsTheRingAliasCheckOfEveryFit) {
+  auto counts = countPairs(30, 8);
+  auto frames = candidates(40, 21);
+  test_support::snapToRings(counts, 4.0 / 3.0);
+  test_support::snapToRings(frames, 4.0 / 3.0);
+  const AssociatedCalibration r =
+      calibrateWithAssociation(fieldsafeCamera(), counts, frames, quickConfig(), PairingConfig{}, PairingLimits{});
+  ASSERT_GE(r.association_pairs, 1u);
+  EXPECT_NEAR(r.result.ring_spacing_rad / kDeg, 4.0 / 3.0, 0.01);
+  // 4 starts (+-1, +-2 spacings) in the first fit and in each refit: the last round refits only
+  // when the pairs still changed.
+  const int refits = r.converged ? r.rounds - 1 : r.rounds;
+  EXPECT_EQ(r.result.ring_alias_tried, 4 * (1 + refits));
+  EXPECT_LT(rotationErrorRad(r.result.extrinsic, fieldsafeTruth()), 0.3 * kDeg);  // sane (quick config)
+}

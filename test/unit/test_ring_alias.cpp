@@ -10,9 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
-#include <map>
 #include <numeric>
 
 using namespace thermal_lidar_calibration;
@@ -24,39 +22,15 @@ namespace {
 constexpr double kDeg = M_PI / 180.0;
 constexpr double kRingSpacingDeg = 4.0 / 3.0;
 
-// Pairs as makeSyntheticPairs makes them, with each point's height moved onto the nearest ring
-// (its elevation from the LiDAR at the origin a whole number of ring spacings) and kept where that
-// ring still meets its person (between the person's lowest and highest points), as a spinning
-// LiDAR sees people: every ring from the feet to the head. The masks hold every such point.
+// FieldSAFE-like pairs whose points lie on rings 1.33 deg apart (test_support::snapToRings), 240
+// points a person before the snapping.
 std::vector<CalibrationPair> ringPairs(std::uint64_t seed, int pairs = 30) {
   test_support::SyntheticPairsOptions o;
   o.pairs = pairs;
   o.seed = seed;
   o.points_per_person = 240;
   std::vector<CalibrationPair> data = test_support::makeSyntheticPairs(fieldsafeCamera(false), fieldsafeTruth(), o);
-  for (CalibrationPair& pair : data) {
-    std::map<std::int32_t, std::pair<float, float>> extent;  // label -> lowest, highest z
-    for (std::size_t i = 0; i < pair.points.size(); ++i) {
-      auto found = extent.emplace(pair.labels[i], std::make_pair(pair.points[i].z(), pair.points[i].z())).first;
-      found->second.first = std::min(found->second.first, pair.points[i].z());
-      found->second.second = std::max(found->second.second, pair.points[i].z());
-    }
-    std::vector<Eigen::Vector3f> kept;
-    std::vector<std::int32_t> labels;
-    for (std::size_t i = 0; i < pair.points.size(); ++i) {
-      Eigen::Vector3f p = pair.points[i];
-      const double horizontal = std::hypot(double(p.x()), double(p.y()));
-      const double ring = std::round(std::atan2(double(p.z()), horizontal) / (kRingSpacingDeg * kDeg));
-      const double z = horizontal * std::tan(ring * kRingSpacingDeg * kDeg);
-      const auto& [lowest, highest] = extent.at(pair.labels[i]);
-      if (z < lowest || z > highest) continue;
-      p.z() = static_cast<float>(z);
-      kept.push_back(p);
-      labels.push_back(pair.labels[i]);
-    }
-    pair.points = kept;
-    pair.labels = labels;
-  }
+  test_support::snapToRings(data, kRingSpacingDeg);
   return data;
 }
 
