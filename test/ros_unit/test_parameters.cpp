@@ -188,7 +188,7 @@ TEST(Parameters, QualityThresholdsAreValidatedAcrossKeys) {
 
 TEST(Parameters, DescribeListsEveryCoreKeyOnce) {
   const auto described = describeCoreParameters(CoreParameters{});
-  EXPECT_EQ(described.size(), 91u);  // 34 of the method and gating, 17 quality (issue 8), 16 drift (9),
+  EXPECT_EQ(described.size(), 92u);  // 35 of the method and gating, 17 quality (issue 8), 16 drift (9),
                                      // 17 timing (21: 15 of the estimate and verdict, 2 of the watch),
                                      // 7 association (23)
   for (const auto& kv : described) {
