@@ -242,26 +242,25 @@ bool leaveRingAlias(const LossEvaluator& nearest, const std::vector<CalibrationP
   const LossEvaluator here = at(nearest.withPixelRule(PixelRule::kBilinear), result.time_offset_s);
   const double refined_loss = here.loss(result.extrinsic, used);
   double best = kClearlyLower * refined_loss - kMinGainPx;
-  const int turns = config.refine.ring_alias_turns;
-  const std::vector<Extrinsic> starts = ringAliasStarts(result.extrinsic, result.ring_spacing_rad, turns);
   Extrinsic chosen = result.extrinsic;
-  for (std::size_t k = 0; k < starts.size() && !result.stopped; ++k) {
-    const int turn = (k % 2 == 0 ? 1 : -1) * static_cast<int>(k / 2 + 1);
+  for (const RingAliasStart& s :
+       ringAliasStarts(result.extrinsic, result.ring_spacing_rad, config.refine.ring_alias_turns)) {
+    if (result.stopped) break;
     char name[32];
-    std::snprintf(name, sizeof(name), "ring alias %+d", turn);
+    std::snprintf(name, sizeof(name), "ring alias %+d", s.turn);
     report.evaluations_before_stage = result.evaluations;
     const auto on_iteration = [&](int iteration, double loss, const Extrinsic& e, std::uint64_t evals) {
       return report("ring_alias", iteration, 0, loss, e, evals, name);
     };
     const RefineOutcome refined =
-        LocalRefinement(here, config.refine, config.num_threads).run(starts[k], used, on_iteration);
+        LocalRefinement(here, config.refine, config.num_threads).run(s.start, used, on_iteration);
     result.evaluations += refined.evaluations;
     result.stopped = refined.stopped;
     ++result.ring_alias_tried;
     if (!result.stopped && refined.loss < best) {
       best = refined.loss;
       chosen = refined.best;
-      result.ring_alias_turn = turn;
+      result.ring_alias_turn = s.turn;
     }
   }
   if (result.stopped || result.ring_alias_turn == 0) return false;

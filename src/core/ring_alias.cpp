@@ -68,12 +68,11 @@ Extrinsic turnedAboutCameraX(const Extrinsic& e, double angle_rad) {
   return Extrinsic::fromRotationMatrix(D * e.rotationMatrix(), D * e.translation);
 }
 
-std::vector<Extrinsic> ringAliasStarts(const Extrinsic& e, double spacing_rad, int turns) {
-  std::vector<Extrinsic> starts;
+std::vector<RingAliasStart> ringAliasStarts(const Extrinsic& e, double spacing_rad, int turns) {
+  std::vector<RingAliasStart> starts;
   if (!(spacing_rad > 0.0)) return starts;
   for (int k = 1; k <= turns; ++k) {
-    starts.push_back(turnedAboutCameraX(e, k * spacing_rad));
-    starts.push_back(turnedAboutCameraX(e, -k * spacing_rad));
+    for (const int turn : {k, -k}) starts.push_back({turn, turnedAboutCameraX(e, turn * spacing_rad)});
   }
   return starts;
 }

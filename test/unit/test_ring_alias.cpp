@@ -90,10 +90,12 @@ TEST(RingAlias, ATurnAboutCameraXMovesEveryImagePointAlongTheVerticalAlike) {
     EXPECT_NEAR(before.y() - after.y(), camera.fy * kRingSpacingDeg * kDeg, 0.08 * camera.fy * kRingSpacingDeg * kDeg)
         << range;
   }
-  const std::vector<Extrinsic> starts = ringAliasStarts(truth, 0.01, 2);
+  const std::vector<RingAliasStart> starts = ringAliasStarts(truth, 0.01, 2);
   ASSERT_EQ(starts.size(), 4u);
-  EXPECT_NEAR(rotationErrorRad(starts[0], truth), 0.01, 1e-9);
-  EXPECT_NEAR(rotationErrorRad(starts[3], truth), 0.02, 1e-9);
+  EXPECT_EQ(starts[0].turn, 1);
+  EXPECT_EQ(starts[3].turn, -2);
+  EXPECT_NEAR(rotationErrorRad(starts[0].start, truth), 0.01, 1e-9);
+  EXPECT_NEAR(rotationErrorRad(starts[3].start, truth), 0.02, 1e-9);
 }
 
 

@@ -33,8 +33,12 @@ RingSpacing ringSpacing(const std::vector<CalibrationPair>& pairs, const std::ve
 // point moves along the image vertical by about fy * angle_rad, whatever its range.
 Extrinsic turnedAboutCameraX(const Extrinsic& e, double angle_rad);
 
-// The starts to refine from: `e` turned by k * spacing for k = +-1 .. +-turns (in that order:
-// +1, -1, +2, -2, ...); none when spacing is 0.
-std::vector<Extrinsic> ringAliasStarts(const Extrinsic& e, double spacing_rad, int turns);
+// A start to refine from: `e` turned by `turn` ring spacings.
+struct RingAliasStart {
+  int turn = 0;
+  Extrinsic start;
+};
+// The starts for turn = +1, -1, +2, -2, ... +-turns; none when spacing is 0.
+std::vector<RingAliasStart> ringAliasStarts(const Extrinsic& e, double spacing_rad, int turns);
 
 }  // namespace thermal_lidar_calibration
