@@ -62,7 +62,7 @@ std::vector<CalibrationPair> DriftMonitor::pairsSince(std::uint64_t seq,
     if (h.seq >= seq) out.push_back(h.pair);
   }
   // The latest `at_most` of the count rule's pairs, with the association pairs among them.
-  std::size_t counts = static_cast<std::size_t>(std::count_if(out.begin(), out.end(), byCounts));
+  std::size_t counts = countRulePairs(out);
   auto first = out.begin();
   while (first != out.end() && (counts > at_most || (counts == at_most && !byCounts(*first)))) {
     counts -= byCounts(*first) ? 1 : 0;
