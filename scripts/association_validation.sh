@@ -17,8 +17,7 @@
 set -euo pipefail
 # shellcheck source=scripts/workspace.sh
 source "$(dirname "${BASH_SOURCE[0]}")/workspace.sh"
-# TLC_BIN: run already built executables (a copy, so that a rebuild cannot change them mid-run).
-if [ -n "${TLC_BIN:-}" ]; then bin="$TLC_BIN"; else prepare_workspace --bench; fi
+prepare_workspace_unless_bin --bench  # TLC_BIN: executables already built
 rig=fieldsafe
 frames=""
 ideal=0

@@ -11,7 +11,7 @@
 set -euo pipefail
 # shellcheck source=scripts/workspace.sh
 source "$(dirname "${BASH_SOURCE[0]}")/workspace.sh"
-if [ -n "${TLC_BIN:-}" ]; then bin="$TLC_BIN"; else prepare_workspace; fi
+prepare_workspace_unless_bin  # TLC_BIN: executables already built
 noise=clean
 change=0.5,0
 modes=(counts association)

@@ -23,8 +23,7 @@
 set -euo pipefail
 # shellcheck source=scripts/workspace.sh
 source "$(dirname "${BASH_SOURCE[0]}")/workspace.sh"
-# TLC_BIN: run already built executables (a copy, so that a rebuild cannot change them mid-run).
-if [ -n "${TLC_BIN:-}" ]; then bin="$TLC_BIN"; else prepare_workspace; fi
+prepare_workspace_unless_bin  # TLC_BIN: executables already built
 cases="fs_late60 fs_early40 fs_sync ms2_late60 ms2_early40 ms2_sync fs_endstamp60 fs_sweep60 fs_raw60 fs_raw_sync fs_steady60"
 noises="clean realistic"
 wanted="default none"

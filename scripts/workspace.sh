@@ -21,6 +21,13 @@ prepare_workspace() {
   set -u
 }
 
+# TLC_BIN set: run those already built executables (a copy, so that a rebuild cannot change them
+# mid-run) as $bin; otherwise prepare_workspace with these arguments.
+prepare_workspace_unless_bin() {
+  # shellcheck disable=SC2034  # $bin is for the scripts that source this file
+  if [ -n "${TLC_BIN:-}" ]; then bin="$TLC_BIN"; else prepare_workspace "$@"; fi
+}
+
 # For the CPU measurements: a roscore of the script's own on PORT (so it never meets another
 # master), ROS_HOME and its log under DIR; its PID in $roscore_pid for the caller's exit trap.
 start_private_roscore() {  # DIR PORT
