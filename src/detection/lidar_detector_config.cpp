@@ -47,7 +47,6 @@ const ParameterRanges<LidarPersonConfig>& LidarPersonConfig::ranges() {
       .add("lidar_narrow_leg_margin_m", &LidarPersonConfig::narrow_leg_margin_m, closedRange(0, 20))
       .add("lidar_min_person_height_m", &LidarPersonConfig::min_person_height_m, closedRange(0, 3))
       .add("lidar_row_gap_factor", &LidarPersonConfig::row_gap_factor, closedRange(0, 100))
-      .add("lidar_feet_min_height_m", &LidarPersonConfig::feet_min_height_m, closedRange(0, 2))
       .add("lidar_min_points", &LidarPersonConfig::min_points, IntRange{1, 1000000})
       .add("lidar_min_points_at_10m", &LidarPersonConfig::min_points_at_10m, closedRange(0, 1e6));
   return ranges;

@@ -1,7 +1,6 @@
 #include "thermal_lidar_calibration/detection/lidar_person_detector.hpp"
 
 #include "thermal_lidar_calibration/detection/object_splitter.hpp"
-#include "thermal_lidar_calibration/detection/person_feet.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -130,17 +129,13 @@ LidarDetection LidarPersonDetector::detect(const std::vector<Eigen::Vector3f>& p
     explainObject(points, object, 0, &people, &result.rejected);
   }
 
+  // Labels nearest first (ties by first point index): deterministic whatever the input order.
   std::vector<std::pair<float, int>> order;
   std::vector<PersonShape> shapes;
   for (std::size_t k = 0; k < people.size(); ++k) {
     shapes.push_back(shapeOf(points, people[k]));
     order.emplace_back(shapes.back().range_m, static_cast<int>(k));
   }
-  // Each person's feet, which the ground band took, join it once it was judged and measured.
-  const std::vector<std::vector<int>> feet =
-      feetUnder(levelled, heights, people, static_cast<float>(c.feet_min_height_m), ground_tolerance);
-  for (std::size_t k = 0; k < people.size(); ++k) people[k].insert(people[k].end(), feet[k].begin(), feet[k].end());
-  // Labels nearest first (ties by first point index): deterministic whatever the input order.
   std::sort(order.begin(), order.end(), [&](const auto& a, const auto& b) {
     return a.first != b.first ? a.first < b.first : people[a.second].front() < people[b.second].front();
   });

@@ -81,9 +81,6 @@ struct LidarPersonConfig {
   // 15 m) the floors above decide.
   double min_person_height_m = 1.5;  // lidar_min_person_height_m: the smallest adult looked for, m; [0, 3]
   double row_gap_factor = 2.5;       // lidar_row_gap_factor: in row spacings; 0 = off; [0, 100]
-  // The ground band's points under a person's legs join the person (detection/person_feet.hpp)
-  // when higher than this above the local ground; at lidar_ground_tolerance_m or above, none do.
-  double feet_min_height_m = 0.03;  // lidar_feet_min_height_m: m; [0, 2]
   int min_points = 5;             // lidar_min_points: points on a person at any range; integer [1, 1000000]
   double min_points_at_10m = 20.0;// lidar_min_points_at_10m: points on a person at 10 m, scaled with (10 m / range)^2; [0, 1e6]
   static const ParameterRanges<LidarPersonConfig>& ranges();  // checked by validate()

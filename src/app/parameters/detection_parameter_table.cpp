@@ -190,10 +190,6 @@ void addLidarRows(ParameterTable<DetectionParameters>& t) {
               "a person's lowest row is at most this many row spacings above lidar_ground_tolerance_m (legs reach the "
               "ground) and no gap between its rows is wider (one missing row passes): a car's rear slice, a bush, a "
               "bicycle or a fence does not; 0 = off (then no sampling test at all)");
-  person.real("lidar_feet_min_height_m", &LidarPersonConfig::feet_min_height_m, kConfigRange, "m",
-              "the ground band's points (up to lidar_ground_tolerance_m) under a person's legs and higher than this "
-              "above the local ground join the person: its feet, which hold the projected cluster against the bottom "
-              "of the mask; at lidar_ground_tolerance_m or above, none do");
   person.integer("lidar_min_points", &LidarPersonConfig::min_points, kConfigRange, "",
                  "fewest points on a person at any range");
   person.real("lidar_min_points_at_10m", &LidarPersonConfig::min_points_at_10m, kConfigRange, "",
