@@ -28,7 +28,7 @@ RingSpacing ringSpacing(const std::vector<CalibrationPair>& pairs, const std::ve
   for (const std::size_t i : used) total += pairs[i].points.size();
   const std::size_t stride = std::max<std::size_t>(1, (total + kMaxPoints - 1) / kMaxPoints);
   std::vector<double> elevations;
-  elevations.reserve(std::min(total, kMaxPoints) + used.size());
+  elevations.reserve(std::min(total, kMaxPoints));  // every stride-th point: at most kMaxPoints
   std::size_t k = 0;
   for (const std::size_t i : used) {
     for (const Eigen::Vector3f& p : pairs[i].points) {
