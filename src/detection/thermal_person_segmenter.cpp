@@ -1,6 +1,7 @@
 #include "thermal_lidar_calibration/detection/thermal_person_segmenter.hpp"
 
 #include "cold_band_join.hpp"
+#include "opened_parts.hpp"
 #include "thermal_regions.hpp"
 
 #include <opencv2/imgproc.hpp>
@@ -256,9 +257,14 @@ ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const 
   hi = std::min(hi, full_scale);
   if (lo > hi) return result;  // the scene is warmer than the body band: nobody to find
 
+  cv::Mat warm;    // the band's pixels before the opening: what the kept people grow back into
   cv::Mat opened;  // kept as it is: the head split reads its top profile here (thermal_regions.hpp)
-  cv::inRange(image, cv::Scalar(lo), cv::Scalar(hi), opened);
-  if (!open_kernel_.empty()) cv::morphologyEx(opened, opened, cv::MORPH_OPEN, open_kernel_);
+  cv::inRange(image, cv::Scalar(lo), cv::Scalar(hi), warm);
+  if (open_kernel_.empty()) {
+    opened = warm;
+  } else {
+    cv::morphologyEx(warm, opened, cv::MORPH_OPEN, open_kernel_);
+  }
   cv::Mat binary;  // the closing writes a buffer of its own
   if (close_kernel_.empty()) {
     binary = opened;
@@ -295,6 +301,19 @@ ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const 
                              : paintComponent<std::uint8_t>(image, labels, region.label, region.bbox, id, &result.mask);
     person.mean_level = result.radiometric ? mean * c.kelvin_per_count + c.kelvin_offset : mean;
     result.people.push_back(person);
+  }
+  if (!open_kernel_.empty() && c.restore_px > 0 && !result.people.empty()) {
+    std::vector<cv::Rect> boxes;
+    std::vector<int> areas;
+    for (const ThermalPerson& p : result.people) {
+      boxes.push_back(p.bbox);
+      areas.push_back(p.area_px);
+    }
+    restoreOpenedParts(image, warm, binary, c.restore_px, &result.mask, &boxes, &areas);
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+      result.people[i].bbox = boxes[i];
+      result.people[i].area_px = areas[i];
+    }
   }
   return result;
 }

@@ -47,6 +47,10 @@ struct ThermalSegmenterConfig {
   // --- Clean-up of the binary mask (square structuring elements of side 2r+1).
   int open_radius_px = 1;   // thermal_open_radius_px: opening removes specks and 1-px bridges; integer [0, 10]
   int close_radius_px = 1;  // thermal_close_radius_px: closing fills small holes and seams; integer [0, 10]
+  // The opening also removes the parts of a person narrower than its square (a leg's bottom rows,
+  // a far person's 1-2 px legs and arms), where LiDAR points sit: each kept person grows back into
+  // the warm pixels connected to it, at most this many 4-neighbour steps (detection/opened_parts.hpp).
+  int restore_px = 10;  // thermal_restore_px: 0 = off; integer [0, 50]
 
   // --- Regions cut by the image border: a region with a pixel in the outermost border_margin_px
   // rows or columns may go on outside the frame, so its shape says nothing, and the LiDAR points

@@ -52,6 +52,10 @@ void addThermalRows(ParameterTable<DetectionParameters>& t) {
              "morphological opening (square 2r+1) removes specks and thin bridges; 0 = none");
   th.integer("thermal_close_radius_px", &ThermalSegmenterConfig::close_radius_px, kConfigRange, "px",
              "morphological closing fills small holes and seams; 0 = none");
+  th.integer("thermal_restore_px", &ThermalSegmenterConfig::restore_px, kConfigRange, "px",
+             "each kept person grows back into the warm pixels connected to it, at most this many 4-neighbour steps, "
+             "never into another region: the opening removes a leg's bottom rows and a far person's 1-2 px legs, "
+             "where LiDAR points sit; 0 = off");
   th.integer("thermal_border_margin_px", &ThermalSegmenterConfig::border_margin_px, kConfigRange, "px",
              "a region with a pixel in the outermost n rows or columns is cut by the image border: dropped and "
              "counted, its shape says nothing and its LiDAR points would fall partly outside the image; 0 = keep them");
