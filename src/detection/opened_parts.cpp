@@ -33,43 +33,61 @@ std::vector<double> coolestLevels(const cv::Mat& image, const cv::Mat& warm, con
   return floors;
 }
 
+// The background pixels 4-adjacent to `p` that are not in `seen`, appended to `out` and marked.
+void addZeroNeighbours(const cv::Mat& ids, const cv::Point& p, cv::Mat* seen, std::vector<cv::Point>* out) {
+  const cv::Point around[4] = {{p.x - 1, p.y}, {p.x + 1, p.y}, {p.x, p.y - 1}, {p.x, p.y + 1}};
+  for (const cv::Point& q : around) {
+    if (q.x < 0 || q.y < 0 || q.x >= ids.cols || q.y >= ids.rows) continue;
+    if (ids.at<std::uint8_t>(q) != 0 || seen->at<std::uint8_t>(q) != 0) continue;
+    seen->at<std::uint8_t>(q) = 1;
+    out->push_back(q);
+  }
+}
+
+// One step at a time, every background pixel next to a person as the people were before the step
+// joins the lowest id among its 4-neighbours, if it is warm, not in another region and at least
+// that person's floor. A pixel can only join in a step after one of its neighbours changed, so
+// each step looks at the neighbours of the pixels the last one added (of every person pixel in
+// the first): the cost follows the people's outline, not their boxes.
 template <typename T>
-void grow(const cv::Mat& image, const cv::Mat& warm, const cv::Mat& others, int steps, const std::vector<double>& floors,
-          cv::Mat* ids, std::vector<cv::Rect>* boxes, std::vector<int>* areas) {
-  const cv::Rect frame(0, 0, ids->cols, ids->rows);
-  // Every step looks only around the people's boxes, grown by one pixel a step.
-  cv::Rect area;
-  for (const cv::Rect& b : *boxes) area |= b;
-  // Every pixel of a step sees the regions as they were before it. Only the area changes, and it
-  // only grows, so after the first copy a step copies just the area.
-  cv::Mat before = ids->clone();
-  for (int step = 0; step < steps; ++step) {
-    area = cv::Rect(area.x - 1, area.y - 1, area.width + 2, area.height + 2) & frame;
-    if (step > 0) (*ids)(area).copyTo(before(area));
-    bool grew = false;
-    for (int y = area.y; y < area.y + area.height; ++y) {
-      const std::uint8_t* w = warm.ptr<std::uint8_t>(y);
-      const std::uint8_t* other = others.empty() ? nullptr : others.ptr<std::uint8_t>(y);
-      const T* pix = image.ptr<T>(y);
-      const std::uint8_t* row = before.ptr<std::uint8_t>(y);
-      const std::uint8_t* up = y > 0 ? before.ptr<std::uint8_t>(y - 1) : nullptr;
-      const std::uint8_t* down = y + 1 < before.rows ? before.ptr<std::uint8_t>(y + 1) : nullptr;
-      std::uint8_t* out = ids->ptr<std::uint8_t>(y);
-      for (int x = area.x; x < area.x + area.width; ++x) {
-        if (row[x] != 0 || w[x] == 0 || (other && other[x])) continue;
-        int id = 256;
-        if (x > 0 && row[x - 1]) id = std::min<int>(id, row[x - 1]);
-        if (x + 1 < before.cols && row[x + 1]) id = std::min<int>(id, row[x + 1]);
-        if (up && up[x]) id = std::min<int>(id, up[x]);
-        if (down && down[x]) id = std::min<int>(id, down[x]);
-        if (id == 256 || pix[x] < floors[static_cast<std::size_t>(id - 1)]) continue;
-        out[x] = static_cast<std::uint8_t>(id);
-        (*boxes)[static_cast<std::size_t>(id - 1)] |= cv::Rect(x, y, 1, 1);
-        ++(*areas)[static_cast<std::size_t>(id - 1)];
-        grew = true;
+void grow(const cv::Mat& image, const cv::Mat& warm, const cv::Mat& regions, int steps,
+          const std::vector<double>& floors, cv::Mat* ids, std::vector<cv::Rect>* boxes, std::vector<int>* areas) {
+  cv::Mat seen = cv::Mat::zeros(ids->size(), CV_8UC1);  // already a candidate this step
+  std::vector<cv::Point> candidates, joined;
+  for (const cv::Rect& b : *boxes) {
+    for (int y = b.y; y < b.y + b.height; ++y) {
+      const std::uint8_t* row = ids->ptr<std::uint8_t>(y);
+      for (int x = b.x; x < b.x + b.width; ++x) {
+        if (row[x] != 0) addZeroNeighbours(*ids, cv::Point(x, y), &seen, &candidates);
       }
     }
-    if (!grew) return;  // nothing left to reach
+  }
+  std::vector<std::uint8_t> chosen;
+  for (int step = 0; step < steps && !candidates.empty(); ++step) {
+    joined.clear();
+    chosen.clear();
+    for (const cv::Point& q : candidates) {
+      seen.at<std::uint8_t>(q) = 0;
+      if (warm.at<std::uint8_t>(q) == 0 || (!regions.empty() && regions.at<std::uint8_t>(q) != 0)) continue;
+      int id = 256;
+      const cv::Point around[4] = {{q.x - 1, q.y}, {q.x + 1, q.y}, {q.x, q.y - 1}, {q.x, q.y + 1}};
+      for (const cv::Point& n : around) {
+        if (n.x < 0 || n.y < 0 || n.x >= ids->cols || n.y >= ids->rows) continue;
+        const int v = ids->at<std::uint8_t>(n);
+        if (v != 0) id = std::min(id, v);
+      }
+      if (id == 256 || image.at<T>(q) < floors[static_cast<std::size_t>(id - 1)]) continue;
+      joined.push_back(q);
+      chosen.push_back(static_cast<std::uint8_t>(id));
+    }
+    // Written after the step, so that every pixel of it saw the people as they were before it.
+    for (std::size_t k = 0; k < joined.size(); ++k) {
+      ids->at<std::uint8_t>(joined[k]) = chosen[k];
+      (*boxes)[chosen[k] - 1u] |= cv::Rect(joined[k], cv::Size(1, 1));
+      ++(*areas)[chosen[k] - 1u];
+    }
+    candidates.clear();
+    for (const cv::Point& p : joined) addZeroNeighbours(*ids, p, &seen, &candidates);
   }
 }
 
@@ -78,13 +96,12 @@ void grow(const cv::Mat& image, const cv::Mat& warm, const cv::Mat& others, int 
 void restoreOpenedParts(const cv::Mat& image, const cv::Mat& warm, const cv::Mat& regions, int steps, cv::Mat* ids,
                         std::vector<cv::Rect>* boxes, std::vector<int>* areas) {
   if (steps <= 0 || boxes->empty()) return;
-  cv::Mat others;  // the regions that are not people: never grown into
-  if (!regions.empty()) others = regions & (*ids == 0);
+  // A background pixel in `regions` belongs to a region that is not a person: never grown into.
   if (image.depth() == CV_16U) {
-    grow<std::uint16_t>(image, warm, others, steps, coolestLevels<std::uint16_t>(image, warm, *ids, *boxes, kCoolestQuantile), ids,
+    grow<std::uint16_t>(image, warm, regions, steps, coolestLevels<std::uint16_t>(image, warm, *ids, *boxes, kCoolestQuantile), ids,
                         boxes, areas);
   } else {
-    grow<std::uint8_t>(image, warm, others, steps, coolestLevels<std::uint8_t>(image, warm, *ids, *boxes, kCoolestQuantile), ids,
+    grow<std::uint8_t>(image, warm, regions, steps, coolestLevels<std::uint8_t>(image, warm, *ids, *boxes, kCoolestQuantile), ids,
                        boxes, areas);
   }
 }
