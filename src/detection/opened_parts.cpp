@@ -1,47 +1,27 @@
 #include "opened_parts.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 namespace thermal_lidar_calibration {
 namespace detection {
 namespace {
 
-template <typename T>
-std::vector<double> coolestLevels(const cv::Mat& image, const cv::Mat& warm, const cv::Mat& ids,
-                                  const std::vector<cv::Rect>& boxes, double quantile) {
-  std::vector<double> floors(boxes.size(), 0.0);
-  std::vector<T> levels;
-  for (std::size_t k = 0; k < boxes.size(); ++k) {
-    levels.clear();
-    const cv::Rect& b = boxes[k];
-    const auto id = static_cast<std::uint8_t>(k + 1);
-    for (int y = b.y; y < b.y + b.height; ++y) {
-      const std::uint8_t* row = ids.ptr<std::uint8_t>(y);
-      const std::uint8_t* w = warm.ptr<std::uint8_t>(y);
-      const T* pix = image.ptr<T>(y);
-      for (int x = b.x; x < b.x + b.width; ++x) {
-        // The closing's fill (the gap between the legs) is background, not the person.
-        if (row[x] == id && w[x] != 0) levels.push_back(pix[x]);
-      }
-    }
-    if (levels.empty()) continue;
-    const auto nth = levels.begin() + static_cast<std::ptrdiff_t>(std::floor(quantile * (levels.size() - 1)));
-    std::nth_element(levels.begin(), nth, levels.end());
-    floors[k] = *nth;
+// Calls f(q) for each 4-neighbour q of p inside an image of `size`.
+template <typename F>
+void forEachNeighbour(const cv::Point& p, const cv::Size& size, F f) {
+  const cv::Point around[4] = {{p.x - 1, p.y}, {p.x + 1, p.y}, {p.x, p.y - 1}, {p.x, p.y + 1}};
+  for (const cv::Point& q : around) {
+    if (q.x >= 0 && q.y >= 0 && q.x < size.width && q.y < size.height) f(q);
   }
-  return floors;
 }
 
 // The background pixels 4-adjacent to `p` that are not in `seen`, appended to `out` and marked.
 void addZeroNeighbours(const cv::Mat& ids, const cv::Point& p, cv::Mat* seen, std::vector<cv::Point>* out) {
-  const cv::Point around[4] = {{p.x - 1, p.y}, {p.x + 1, p.y}, {p.x, p.y - 1}, {p.x, p.y + 1}};
-  for (const cv::Point& q : around) {
-    if (q.x < 0 || q.y < 0 || q.x >= ids.cols || q.y >= ids.rows) continue;
-    if (ids.at<std::uint8_t>(q) != 0 || seen->at<std::uint8_t>(q) != 0) continue;
+  forEachNeighbour(p, ids.size(), [&](const cv::Point& q) {
+    if (ids.at<std::uint8_t>(q) != 0 || seen->at<std::uint8_t>(q) != 0) return;
     seen->at<std::uint8_t>(q) = 1;
     out->push_back(q);
-  }
+  });
 }
 
 // One step at a time, every background pixel next to a person as the people were before the step
@@ -51,10 +31,11 @@ void addZeroNeighbours(const cv::Mat& ids, const cv::Point& p, cv::Mat* seen, st
 // the first): the cost follows the people's outline, not their boxes.
 template <typename T>
 void grow(const cv::Mat& image, const cv::Mat& warm, const cv::Mat& regions, int steps,
-          const std::vector<double>& floors, cv::Mat* ids, std::vector<cv::Rect>* boxes, std::vector<int>* areas) {
+          const std::vector<double>& floors, cv::Mat* ids, std::vector<ThermalPerson>* people) {
   cv::Mat seen = cv::Mat::zeros(ids->size(), CV_8UC1);  // already a candidate this step
   std::vector<cv::Point> candidates, joined;
-  for (const cv::Rect& b : *boxes) {
+  for (const ThermalPerson& person : *people) {
+    const cv::Rect& b = person.bbox;
     for (int y = b.y; y < b.y + b.height; ++y) {
       const std::uint8_t* row = ids->ptr<std::uint8_t>(y);
       for (int x = b.x; x < b.x + b.width; ++x) {
@@ -70,12 +51,10 @@ void grow(const cv::Mat& image, const cv::Mat& warm, const cv::Mat& regions, int
       seen.at<std::uint8_t>(q) = 0;
       if (warm.at<std::uint8_t>(q) == 0 || (!regions.empty() && regions.at<std::uint8_t>(q) != 0)) continue;
       int id = 256;
-      const cv::Point around[4] = {{q.x - 1, q.y}, {q.x + 1, q.y}, {q.x, q.y - 1}, {q.x, q.y + 1}};
-      for (const cv::Point& n : around) {
-        if (n.x < 0 || n.y < 0 || n.x >= ids->cols || n.y >= ids->rows) continue;
+      forEachNeighbour(q, ids->size(), [&](const cv::Point& n) {
         const int v = ids->at<std::uint8_t>(n);
         if (v != 0) id = std::min(id, v);
-      }
+      });
       if (id == 256 || image.at<T>(q) < floors[static_cast<std::size_t>(id - 1)]) continue;
       joined.push_back(q);
       chosen.push_back(static_cast<std::uint8_t>(id));
@@ -83,8 +62,9 @@ void grow(const cv::Mat& image, const cv::Mat& warm, const cv::Mat& regions, int
     // Written after the step, so that every pixel of it saw the people as they were before it.
     for (std::size_t k = 0; k < joined.size(); ++k) {
       ids->at<std::uint8_t>(joined[k]) = chosen[k];
-      (*boxes)[chosen[k] - 1u] |= cv::Rect(joined[k], cv::Size(1, 1));
-      ++(*areas)[chosen[k] - 1u];
+      ThermalPerson& person = (*people)[chosen[k] - 1u];
+      person.bbox |= cv::Rect(joined[k], cv::Size(1, 1));
+      ++person.area_px;
     }
     candidates.clear();
     for (const cv::Point& p : joined) addZeroNeighbours(*ids, p, &seen, &candidates);
@@ -93,16 +73,13 @@ void grow(const cv::Mat& image, const cv::Mat& warm, const cv::Mat& regions, int
 
 }  // namespace
 
-void restoreOpenedParts(const cv::Mat& image, const cv::Mat& warm, const cv::Mat& regions, int steps, cv::Mat* ids,
-                        std::vector<cv::Rect>* boxes, std::vector<int>* areas) {
-  if (steps <= 0 || boxes->empty()) return;
-  // A background pixel in `regions` belongs to a region that is not a person: never grown into.
+void restoreOpenedParts(const cv::Mat& image, const cv::Mat& warm, const cv::Mat& regions, int steps,
+                        const std::vector<double>& floors, cv::Mat* ids, std::vector<ThermalPerson>* people) {
+  if (steps <= 0 || people->empty()) return;
   if (image.depth() == CV_16U) {
-    grow<std::uint16_t>(image, warm, regions, steps, coolestLevels<std::uint16_t>(image, warm, *ids, *boxes, kCoolestQuantile), ids,
-                        boxes, areas);
+    grow<std::uint16_t>(image, warm, regions, steps, floors, ids, people);
   } else {
-    grow<std::uint8_t>(image, warm, regions, steps, coolestLevels<std::uint8_t>(image, warm, *ids, *boxes, kCoolestQuantile), ids,
-                       boxes, areas);
+    grow<std::uint8_t>(image, warm, regions, steps, floors, ids, people);
   }
 }
 

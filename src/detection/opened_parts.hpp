@@ -24,6 +24,8 @@
 // the same step goes to the lower id; a speck the opening removed comes back only where it
 // touches a person.
 
+#include "thermal_lidar_calibration/detection/thermal_person_segmenter.hpp"
+
 #include <opencv2/core.hpp>
 
 #include <vector>
@@ -31,14 +33,15 @@
 namespace thermal_lidar_calibration {
 namespace detection {
 
-constexpr double kCoolestQuantile = 0.05;
+constexpr double kCoolestQuantile = 0.05;  // of a person's warm pixels: its floor
 
-// `ids` (CV_8UC1, 0 = background) grows into the non-zero pixels of `warm` (CV_8UC1, the size of
-// `image`, which is CV_8UC1 or CV_16UC1) that are not in `regions` outside the people (CV_8UC1,
-// the opened and closed mask the people were cut from; empty: no such limit), `steps` rounds;
-// boxes[id - 1] (the people's bounding boxes) and areas[id - 1] grow with it.
-void restoreOpenedParts(const cv::Mat& image, const cv::Mat& warm, const cv::Mat& regions, int steps, cv::Mat* ids,
-                        std::vector<cv::Rect>* boxes, std::vector<int>* areas);
+// `ids` (CV_8UC1, 0 = background, person i + 1 for (*people)[i]) grows into the non-zero pixels
+// of `warm` (CV_8UC1, the size of `image`, which is CV_8UC1 or CV_16UC1) that are not in
+// `regions` outside the people (CV_8UC1, the opened and closed mask the people were cut from;
+// empty: no such limit) and not cooler than floors[i], the kCoolestQuantile of that person's warm
+// pixels, `steps` rounds; each person's bbox and area_px grow with it.
+void restoreOpenedParts(const cv::Mat& image, const cv::Mat& warm, const cv::Mat& regions, int steps,
+                        const std::vector<double>& floors, cv::Mat* ids, std::vector<ThermalPerson>* people);
 
 }  // namespace detection
 }  // namespace thermal_lidar_calibration

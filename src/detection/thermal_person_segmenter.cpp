@@ -286,6 +286,8 @@ ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const 
     return a.centroid.x != b.centroid.x ? a.centroid.x < b.centroid.x : a.centroid.y < b.centroid.y;
   });
   if (kept.size() > 255) kept.resize(255);
+  const bool restore = !open_kernel_.empty() && c.restore_px > 0;  // else nothing was removed
+  std::vector<double> floors;  // each person's coolest warm pixels (the closing's fill left out)
   for (std::size_t i = 0; i < kept.size(); ++i) {
     const WarmRegion& region = kept[i];
     ThermalPerson person;
@@ -301,20 +303,9 @@ ThermalSegmentation ThermalPersonSegmenter::segment(const cv::Mat& image) const 
                              : paintComponent<std::uint8_t>(image, labels, region.label, region.bbox, id, &result.mask);
     person.mean_level = result.radiometric ? mean * c.kelvin_per_count + c.kelvin_offset : mean;
     result.people.push_back(person);
+    if (restore) floors.push_back(regionQuantile(image, labels, region, kCoolestQuantile, warm));
   }
-  if (!open_kernel_.empty() && c.restore_px > 0 && !result.people.empty()) {
-    std::vector<cv::Rect> boxes;
-    std::vector<int> areas;
-    for (const ThermalPerson& p : result.people) {
-      boxes.push_back(p.bbox);
-      areas.push_back(p.area_px);
-    }
-    restoreOpenedParts(image, warm, binary, c.restore_px, &result.mask, &boxes, &areas);
-    for (std::size_t i = 0; i < boxes.size(); ++i) {
-      result.people[i].bbox = boxes[i];
-      result.people[i].area_px = areas[i];
-    }
-  }
+  if (restore) restoreOpenedParts(image, warm, binary, c.restore_px, floors, &result.mask, &result.people);
   return result;
 }
 

@@ -96,15 +96,17 @@ bool cutByBorder(const cv::Rect& box, const cv::Size& size, int margin_px) {
 namespace {
 
 template <typename T>
-std::vector<int> regionValues(const cv::Mat& image, const cv::Mat& labels, const WarmRegion& region) {
+std::vector<int> regionValues(const cv::Mat& image, const cv::Mat& labels, const WarmRegion& region,
+                              const cv::Mat& only) {
   std::vector<int> values;
   values.reserve(static_cast<std::size_t>(region.area_px));
   const cv::Rect& b = region.bbox;
   for (int y = b.y; y < b.y + b.height; ++y) {
     const int* lab = labels.ptr<int>(y);
     const T* pix = image.ptr<T>(y);
+    const std::uint8_t* keep = only.empty() ? nullptr : only.ptr<std::uint8_t>(y);
     for (int x = b.x; x < b.x + b.width; ++x) {
-      if (lab[x] == region.label) values.push_back(pix[x]);
+      if (lab[x] == region.label && (!keep || keep[x] != 0)) values.push_back(pix[x]);
     }
   }
   return values;
@@ -112,9 +114,10 @@ std::vector<int> regionValues(const cv::Mat& image, const cv::Mat& labels, const
 
 }  // namespace
 
-double regionQuantile(const cv::Mat& image, const cv::Mat& labels, const WarmRegion& region, double fraction) {
-  std::vector<int> values = image.type() == CV_16UC1 ? regionValues<std::uint16_t>(image, labels, region)
-                                                     : regionValues<std::uint8_t>(image, labels, region);
+double regionQuantile(const cv::Mat& image, const cv::Mat& labels, const WarmRegion& region, double fraction,
+                      const cv::Mat& only) {
+  std::vector<int> values = image.type() == CV_16UC1 ? regionValues<std::uint16_t>(image, labels, region, only)
+                                                     : regionValues<std::uint8_t>(image, labels, region, only);
   if (values.empty()) return 0.0;
   const auto k = static_cast<std::ptrdiff_t>(std::floor(fraction * static_cast<double>(values.size() - 1)));
   std::nth_element(values.begin(), values.begin() + k, values.end());

@@ -68,8 +68,10 @@ bool cutByBorder(const cv::Rect& box, const cv::Size& size, int margin_px);
 ZoneWidths measureZoneWidths(const cv::Mat& labels, const WarmRegion& region);
 
 // The `fraction` quantile of the image values of a region's pixels (`label` within its bbox:
-// a split part's box covers only its columns), in raw units. image: CV_8UC1 or CV_16UC1.
-double regionQuantile(const cv::Mat& image, const cv::Mat& labels, const WarmRegion& region, double fraction);
+// a split part's box covers only its columns), in raw units. image: CV_8UC1 or CV_16UC1. With
+// `only` (CV_8UC1, the image's size), only the pixels where it is non-zero count.
+double regionQuantile(const cv::Mat& image, const cv::Mat& labels, const WarmRegion& region, double fraction,
+                      const cv::Mat& only = cv::Mat());
 
 // Statistics of the pixels of `label` in the columns [x0, x1) of `bbox` (rows of bbox only).
 WarmRegion measureColumns(const cv::Mat& labels, int label, const cv::Rect& bbox, int x0, int x1);
