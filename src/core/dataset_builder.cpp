@@ -71,17 +71,21 @@ OfferOutcome DatasetBuilder::offer(const std::function<Frame()>& decode) {
   return admit(decode, false);
 }
 
-OfferOutcome DatasetBuilder::restore(Frame frame) {
-  return admit([&frame] { return std::move(frame); }, true);
+OfferOutcome DatasetBuilder::restore(Frame frame, const StoredFrameKind& kind) {
+  return admit([&frame] { return std::move(frame); }, true, kind);
 }
 
 // The one path for live, bag and stored frames. A stored frame (kept in an earlier session) is
 // checked and counted exactly like a live one, but neither the skip rule nor the count rule
 // applies again: it was kept under them once, and re-deciding with other settings would
 // silently drop work the user has already collected.
-OfferOutcome DatasetBuilder::admit(const std::function<Frame()>& decode, bool stored) {
+OfferOutcome DatasetBuilder::admit(const std::function<Frame()>& decode, bool stored, const StoredFrameKind& kind) {
   OfferOutcome outcome;
-  const std::uint64_t index = offered_++;
+  // A stored frame keeps its place in the session that stored it (the skip rule between
+  // association pairs counts in it); later frames are numbered after it.
+  const std::uint64_t index = stored && kind.frame_index ? *kind.frame_index : offered_;
+  offered_ = std::max(offered_, index + 1);
+  outcome.frame_index = index;
   if (!stored && gate_.consumeSkip()) {
     outcome.decision = GateDecision::kSkipped;
     return outcome;
@@ -110,13 +114,18 @@ OfferOutcome DatasetBuilder::admit(const std::function<Frame()>& decode, bool st
 
   gate_.counts().nonfinite_points_dropped += frame.nonfinite_points_dropped;
 
-  outcome.decision = stored ? GateDecision::kKept
-                            : gate_.decide(people.mask_people, people.cluster_people,
-                                           people.smallest_cluster_points);
+  if (!stored) {
+    outcome.decision = gate_.decide(people.mask_people, people.cluster_people, people.smallest_cluster_points);
+  } else if (kind.candidate) {
+    outcome.decision = gate_.classify(people.mask_people, people.cluster_people, people.smallest_cluster_points);
+  } else {
+    outcome.decision = GateDecision::kKept;
+  }
   // A frame the count rule did not keep but with people in both modalities may still pair by
   // association (issue 23).
-  const bool candidate = outcome.decision != GateDecision::kKept && keep_candidates_ && !stored &&
+  const bool candidate = outcome.decision != GateDecision::kKept && keep_candidates_ &&
                          people.mask_people > 0 && people.cluster_people > 0;
+  outcome.candidate = candidate;
   if (outcome.decision != GateDecision::kKept && !candidate) return outcome;
 
   CalibrationPair pair;

@@ -66,6 +66,13 @@ bool FrameGate::consumeSkip() {
 
 GateDecision FrameGate::decide(int mask_people, int cluster_people,
                                int smallest_cluster_points) {
+  const GateDecision decision = classify(mask_people, cluster_people, smallest_cluster_points);
+  ++counts_[decision];
+  if (decision == GateDecision::kKept) skip_remaining_ = config_.skip_frames;
+  return decision;
+}
+
+GateDecision FrameGate::classify(int mask_people, int cluster_people, int smallest_cluster_points) const {
   GateDecision decision = GateDecision::kKept;
   if (cluster_people > 0 && smallest_cluster_points < config_.min_points_per_cluster) {
     decision = GateDecision::kSmallCluster;
@@ -76,8 +83,6 @@ GateDecision FrameGate::decide(int mask_people, int cluster_people,
   } else if (mask_people > config_.max_people) {
     decision = GateDecision::kTooManyPeople;
   }
-  ++counts_[decision];
-  if (decision == GateDecision::kKept) skip_remaining_ = config_.skip_frames;
   return decision;
 }
 

@@ -407,3 +407,56 @@ TEST(DatasetBuilder, BoundedCandidatesStayEvenlySpreadOverTheDriveAndDropsAreCou
   EXPECT_EQ(builder.candidatesDropped(), 0u);
   EXPECT_THROW(builder.keepAssociationCandidates(true, 0), std::invalid_argument);
 }
+
+// ~resume and calibrate_bag on a dataset bag: a stored association candidate is held as one again,
+// at its place in the session that stored it (the skip rule between association pairs counts in
+// it), and live frames are numbered after the stored ones.
+TEST(DatasetBuilder, RestoredCandidatesKeepTheirPlaceAndLiveFramesFollowThem) {
+  tlc::DatasetBuilder builder(camera(), gate(3));
+  builder.keepAssociationCandidates(true);
+  const tlc::OfferOutcome pair = builder.restore(frame(1, 1, 5, 1.0), {false, 7});
+  EXPECT_EQ(pair.decision, GateDecision::kKept);
+  EXPECT_FALSE(pair.candidate);
+  const tlc::OfferOutcome held = builder.restore(frame(1, 2, 5, 1.5), {true, 12});
+  EXPECT_EQ(held.decision, GateDecision::kCountMismatch);  // what the count rule says of it
+  EXPECT_TRUE(held.candidate);
+  EXPECT_EQ(held.frame_index, 12u);
+  ASSERT_EQ(builder.pairs().size(), 1u);
+  EXPECT_EQ(builder.pairs()[0].candidate_index, 7u);
+  ASSERT_EQ(builder.candidates().size(), 1u);
+  EXPECT_EQ(builder.candidates()[0].candidate_index, 12u);
+  EXPECT_EQ(builder.candidates()[0].rule, tlc::PairRule::kAssociation);
+  EXPECT_TRUE(builder.candidates()[0].mask.empty());
+  EXPECT_EQ(builder.candidates()[0].regions.type(), CV_16UC1);
+  EXPECT_EQ(builder.counts().considered(), 0u);  // stored frames are not gated again
+  // The next live frame comes after them (and is not skipped: the skip was armed in that session).
+  const tlc::OfferOutcome live = builder.offer([] { return frame(1, 2, 5, 2.0); });
+  EXPECT_EQ(live.decision, GateDecision::kCountMismatch);
+  EXPECT_TRUE(live.candidate);
+  EXPECT_EQ(live.frame_index, 13u);
+  ASSERT_EQ(builder.candidates().size(), 2u);
+  EXPECT_EQ(builder.candidates()[1].candidate_index, 13u);
+}
+
+TEST(DatasetBuilder, StoredCandidatesAreLeftOutWithoutAssociationAndBecomePairsUnderTodaysCountRule) {
+  tlc::DatasetBuilder counts_only(camera(), gate(3));
+  const tlc::OfferOutcome left_out = counts_only.restore(frame(1, 2, 5, 1.0), {true, 4});
+  EXPECT_EQ(left_out.decision, GateDecision::kCountMismatch);
+  EXPECT_FALSE(left_out.candidate);
+  EXPECT_TRUE(counts_only.pairs().empty());
+  EXPECT_TRUE(counts_only.candidates().empty());
+
+  // Stored as a candidate for more people than H_max then; H_max is 3 here, so today it is a pair.
+  tlc::DatasetBuilder builder(camera(), gate(3));
+  builder.keepAssociationCandidates(true);
+  const tlc::OfferOutcome promoted = builder.restore(frame(2, 2, 5, 1.0), {true, 4});
+  EXPECT_EQ(promoted.decision, GateDecision::kKept);
+  EXPECT_FALSE(promoted.candidate);
+  ASSERT_EQ(builder.pairs().size(), 1u);
+  EXPECT_EQ(builder.pairs()[0].rule, tlc::PairRule::kCounts);
+  EXPECT_EQ(builder.pairs()[0].candidate_index, 4u);
+  EXPECT_TRUE(builder.candidates().empty());
+  // A dataset bag from before frame numbers were recorded: stored frames numbered in order.
+  EXPECT_EQ(builder.restore(frame(1, 1, 5, 2.0)).frame_index, 5u);
+  EXPECT_EQ(builder.restore(frame(1, 1, 5, 3.0)).frame_index, 6u);
+}

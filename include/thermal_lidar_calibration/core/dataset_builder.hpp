@@ -24,6 +24,19 @@ struct OfferOutcome {
   std::string error;  // for kBadMessage: what was wrong, one line, user-actionable
   int mask_people = 0;
   int cluster_people = 0;
+  // Issue 23: the count rule did not keep the frame, but it is a candidate for pairing by
+  // association (held, or waiting for its people's motion; held only if the bound allows).
+  bool candidate = false;
+  std::uint64_t frame_index = 0;  // its place among the frames offered (candidate_index)
+};
+
+// How a frame stored by an earlier session (a dataset bag) was kept there.
+struct StoredFrameKind {
+  bool candidate = false;  // held for association, not kept by the count rule
+  // Its candidate_index in that session: the skip rule between association pairs and the pairs
+  // of either rule counts in it. Unknown in dataset bags written before it was recorded: the
+  // stored frames are then numbered in order, as if offered one after another.
+  std::optional<std::uint64_t> frame_index;
 };
 
 // Frames whose ids keep disagreeing with the ids the dataset is locked to (see DatasetBuilder).
@@ -59,8 +72,11 @@ class DatasetBuilder {
 
   // A frame kept in an earlier session (reloaded from a dataset bag for ~resume): the same
   // checks and counting as offer(), but no skip or count rule (it was kept under them once).
-  // kKept, or kBadMessage with the reason (e.g. recorded with a different camera).
-  OfferOutcome restore(Frame frame);
+  // kKept, or kBadMessage with the reason (e.g. recorded with a different camera). A stored
+  // association candidate is held as a candidate again (outcome.candidate; the decision is what
+  // the count rule says of it) when this builder keeps candidates, and left out otherwise; one
+  // that today's count rule keeps (H_max raised, say) becomes a pair of that rule.
+  OfferOutcome restore(Frame frame, const StoredFrameKind& kind = {});
   void reset();  // forget pairs, counts, waiting pairs and scans
 
   // Every scan of person clusters, in time order (a late one is put in its place). Finishes the
@@ -108,7 +124,7 @@ class DatasetBuilder {
 
  private:
   using FrameIds = std::pair<std::string, std::string>;  // camera, lidar
-  OfferOutcome admit(const std::function<Frame()>& decode, bool stored);
+  OfferOutcome admit(const std::function<Frame()>& decode, bool stored, const StoredFrameKind& kind = {});
   // Throws std::invalid_argument when `frame`'s ids are refused; may switch tentative ids.
   void checkFrameIds(const Frame& frame);
 

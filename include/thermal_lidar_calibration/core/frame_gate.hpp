@@ -53,6 +53,8 @@ class FrameGate {
   // Decide on a decoded frame from the two people counts and the smallest cluster size
   // (pass a large value when there are no clusters). Counts the decision; kKept arms the skip.
   GateDecision decide(int mask_people, int cluster_people, int smallest_cluster_points);
+  // What decide() would say, without counting it or arming the skip.
+  GateDecision classify(int mask_people, int cluster_people, int smallest_cluster_points) const;
   // A candidate that could not be decoded.
   void recordBadMessage();
 
