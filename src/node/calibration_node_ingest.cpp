@@ -26,7 +26,6 @@ void CalibrationNode::resumeDataset() {
              params_.dataset_bag.c_str());
   }
   DatasetBagContents contents = readDatasetBag(params_.dataset_bag);  // throws runtime_error
-  for (const auto& error : contents.errors) ROS_WARN("~resume: skipped a stored pair: %s", error.c_str());
   if (!builder_) {
     if (!contents.camera) {
       throw std::runtime_error("~resume: " + params_.dataset_bag +
@@ -35,21 +34,22 @@ void CalibrationNode::resumeDataset() {
     camera_info_msg_ = cameraInfoFromModel(*contents.camera);
     createBuilder(*contents.camera, params_.dataset_bag);
   }
-  for (std::size_t i = 0; i < contents.frames.size(); ++i) {
-    const OfferOutcome outcome = builder_->restore(std::move(contents.frames[i]));
-    if (outcome.decision != GateDecision::kKept) {
-      ROS_WARN("~resume: skipped a stored pair: %s", outcome.error.c_str());
-      continue;
-    }
-    // The exact header stamp, as onFrame keys live frames (not ros::Time(pair.stamp_s): a double
-    // at epoch times has ~240 ns resolution, so the nanoseconds would not round-trip).
-    stored_stamps_ns_.insert(static_cast<long long>(contents.pair_stamps_ns[i]));
-  }
+  const std::string camera_frame = contents.camera_frame, lidar_frame = contents.lidar_frame;
+  const RestoredDataset restored = restoreDataset(std::move(contents), *builder_);
+  for (const auto& error : restored.skipped) ROS_WARN("~resume: skipped a stored frame: %s", error.c_str());
+  // The exact header stamps, as onFrame keys live frames (not ros::Time(pair.stamp_s): a double
+  // at epoch times has ~240 ns resolution, so the nanoseconds would not round-trip).
+  for (const std::uint64_t ns : restored.stamps_ns) stored_stamps_ns_.insert(static_cast<long long>(ns));
   pairs_resumed_ = builder_->pairs().size();
   finished_pairs_ = pairs_resumed_;  // already in the bag
-  camera_frame_ = contents.camera_frame;
-  lidar_frame_ = contents.lidar_frame;
-  ROS_INFO("~resume: reloaded %zu pairs from %s", pairs_resumed_, params_.dataset_bag.c_str());
+  if (!builder_->candidates().empty()) last_candidate_recorded_ = builder_->candidates().back().candidate_index;
+  camera_frame_ = camera_frame;
+  lidar_frame_ = lidar_frame;
+  ROS_INFO("~resume: reloaded %zu pairs%s from %s", pairs_resumed_,
+           restored.candidates > 0
+               ? (" and " + std::to_string(builder_->candidates().size()) + " association candidates").c_str()
+               : "",
+           params_.dataset_bag.c_str());
 }
 
 void CalibrationNode::onCameraInfo(const sensor_msgs::CameraInfo::ConstPtr& msg) {
@@ -133,17 +133,9 @@ void CalibrationNode::handleFinishedPairs() {
                 kept.image->header.stamp.toSec());
       continue;
     }
-    const bool was_recording = recorder_->recording();
-    recorder_->record(*kept.image, *kept.mask,
-                      hasMeasuredMotion(pair) ? withVelocityFields(*kept.clusters, pair.motion, clusters_topic_)
-                                              : *kept.clusters,
-                      *camera_info_msg_);
-    if (was_recording && !recorder_->recording()) {  // this write failed: say so everywhere now
-      state_message_ = "recording stopped: " + recorder_->stopReason();
-      publishStatus();
-      diagnostics_->publishNow();
-    }
+    record(kept, pair, StoredFrameKind{false, pair.candidate_index});
   }
+  recordHeldCandidates();
   if (!added) return;
   assessCollection();
   if (builder_->pairs().size() >= nextFitPairs() && state_ == CalibrationStatus::COLLECTING) {
@@ -151,6 +143,44 @@ void CalibrationNode::handleFinishedPairs() {
                                            : "~stop_when quality: " + std::to_string(nextFitPairs()) +
                                                  " pairs, fitting again");
   }
+}
+
+// One finished frame into the dataset bag, with its people's motion when measured.
+void CalibrationNode::record(const KeptMessages& kept, const CalibrationPair& pair, const StoredFrameKind& kind) {
+  const bool was_recording = recorder_->recording();
+  recorder_->record(*kept.image, *kept.mask,
+                    hasMeasuredMotion(pair) ? withVelocityFields(*kept.clusters, pair.motion, clusters_topic_)
+                                            : *kept.clusters,
+                    *camera_info_msg_, kind);
+  if (was_recording && !recorder_->recording()) {  // this write failed: say so everywhere now
+    state_message_ = "recording stopped: " + recorder_->stopReason();
+    publishStatus();
+    diagnostics_->publishNow();
+  }
+}
+
+// Candidates the builder now holds that are not in the bag yet (newer than the last recorded:
+// the builder holds them in frame order and only ever drops some). Their messages wait in
+// candidate_messages_ until their frame is finished; frames at or before the newest finished one
+// are done with, held or passed over by the bound.
+void CalibrationNode::recordHeldCandidates() {
+  if (candidate_messages_.empty()) return;
+  std::optional<std::uint64_t> newest_finished;
+  if (!builder_->pairs().empty()) newest_finished = builder_->pairs().back().candidate_index;
+  for (const CalibrationPair& candidate : builder_->candidates()) {
+    if (last_candidate_recorded_ && candidate.candidate_index <= *last_candidate_recorded_) continue;
+    last_candidate_recorded_ = candidate.candidate_index;
+    const auto messages = candidate_messages_.find(candidate.candidate_index);
+    if (messages == candidate_messages_.end()) continue;
+    stored_stamps_ns_.insert(static_cast<long long>(messages->second.image->header.stamp.toNSec()));
+    record(messages->second, candidate, StoredFrameKind{true, candidate.candidate_index});
+  }
+  if (last_candidate_recorded_) {
+    newest_finished = std::max(newest_finished.value_or(0), *last_candidate_recorded_);
+  }
+  if (!newest_finished) return;
+  // Frames still waiting for their motion are newer than every finished one.
+  candidate_messages_.erase(candidate_messages_.begin(), candidate_messages_.upper_bound(*newest_finished));
 }
 
 // The end of a replay, or a sensor that stopped: pairs still waiting for later scans get the
@@ -252,6 +282,12 @@ void CalibrationNode::onFrame(const sensor_msgs::Image::ConstPtr& image,
   if (outcome.decision != GateDecision::kKept) {
     ROS_DEBUG("frame %.3f: %s (mask %d people, clusters %d)", image->header.stamp.toSec(),
               toString(outcome.decision), outcome.mask_people, outcome.cluster_people);
+    // Recorded once the builder holds it (after its motion, within its bound): ~resume and
+    // calibrate_bag on the bag pair it by association as this session does.
+    if (outcome.candidate && state_ != CalibrationStatus::MONITORING && recorder_->enabled()) {
+      candidate_messages_[outcome.frame_index] = {image, mask, clusters};
+      recordHeldCandidates();
+    }
     return;
   }
   if (state_ != CalibrationStatus::MONITORING) {

@@ -72,6 +72,7 @@ void CalibrationNode::startMonitoring(const Extrinsic& reference, const std::str
   if (builder_->frameIdsLocked()) builder_->takePairs();  // the calibration's pairs are done
   builder_->takeCandidates();                              // and so are its candidates
   kept_messages_.clear();  // a watch never records
+  candidate_messages_.clear();
   finished_pairs_ = 0;
   ROS_INFO("drift watch: watching the extrinsic from %s (tests of the latest %d kept pairs every "
            "%d; ~auto_update %s)",

@@ -24,6 +24,8 @@ bool CalibrationNode::onReset(std_srvs::Trigger::Request& /*req*/, std_srvs::Tri
   if (builder_) builder_->reset();
   stored_stamps_ns_.clear();
   kept_messages_.clear();
+  candidate_messages_.clear();
+  last_candidate_recorded_.reset();
   finished_pairs_ = 0;
   pairs_resumed_ = 0;
   next_fit_pairs_ = 0;

@@ -38,9 +38,10 @@ DatasetRecorder::DatasetRecorder(const std::string& path, bool append, std::size
 
 bool DatasetRecorder::record(const sensor_msgs::Image& image, const sensor_msgs::Image& mask,
                              const sensor_msgs::PointCloud2& clusters,
-                             const sensor_msgs::CameraInfo& info) {
+                             const sensor_msgs::CameraInfo& info, const StoredFrameKind& kind) {
   if (!writer_) return false;
   if (!stop_reason_.empty()) {
+    if (kind.candidate) return false;  // the account below is of the pairs
     ++pairs_not_recorded_;
     ROS_ERROR_THROTTLE(30.0, "not recording (%s); %zu kept pairs are in memory only (the bag "
                              "holds %zu)",
@@ -48,11 +49,11 @@ bool DatasetRecorder::record(const sensor_msgs::Image& image, const sensor_msgs:
     return false;
   }
   try {
-    writer_->write(image, mask, clusters, info);
-    ++pairs_in_bag_;
+    writer_->write(image, mask, clusters, info, kind);
+    ++(kind.candidate ? candidates_recorded_ : pairs_in_bag_);
     return true;
   } catch (const std::exception& e) {
-    ++pairs_not_recorded_;
+    if (!kind.candidate) ++pairs_not_recorded_;
     stop_reason_ = std::string(e.what()) + "; " + freeSpaceText(path_);
     // e.what() names the bag.
     ROS_ERROR("recording stopped: %s. The node keeps collecting: the bag holds its first %zu "

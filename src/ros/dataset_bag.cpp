@@ -13,6 +13,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <stdexcept>
 
 namespace thermal_lidar_calibration {
@@ -25,17 +26,22 @@ bool fileExists(const std::string& path) { return ::access(path.c_str(), F_OK) =
   throw std::runtime_error("dataset bag " + path + ": " + what);
 }
 
+constexpr const char* kPairText = "pair kept by calibration_node (already gated)";
+constexpr const char* kCandidateText = "association candidate held by calibration_node";
+constexpr const char* kFrameText = "; frame ";
+
 // One pair as one chunk: all five messages stamped with the image's time.
 std::vector<BagAppender::Message> pairMessages(const sensor_msgs::Image& image,
                                                const sensor_msgs::Image& mask,
                                                const sensor_msgs::PointCloud2& clusters,
-                                               const sensor_msgs::CameraInfo& camera_info) {
+                                               const sensor_msgs::CameraInfo& camera_info,
+                                               const StoredFrameKind& kind) {
   const ros::Time time = image.header.stamp < ros::TIME_MIN ? ros::TIME_MIN : image.header.stamp;
   sensor_msgs::CameraInfo info = camera_info;
   info.header.stamp = image.header.stamp;
   if (info.header.frame_id.empty()) info.header.frame_id = image.header.frame_id;
   std_msgs::String marker;
-  marker.data = "pair kept by calibration_node (already gated)";
+  marker.data = datasetMarkerText(kind);
   return {BagAppender::message(DatasetBagTopics::kCameraInfo, time, info),
           BagAppender::message(DatasetBagTopics::kImage, time, image),
           BagAppender::message(DatasetBagTopics::kMask, time, mask),
@@ -43,7 +49,35 @@ std::vector<BagAppender::Message> pairMessages(const sensor_msgs::Image& image,
           BagAppender::message(DatasetBagTopics::kMarker, time, marker)};
 }
 
+// Marker text by exact image stamp.
+std::map<std::uint64_t, std::string> readMarkers(rosbag::Bag& bag) {
+  std::map<std::uint64_t, std::string> markers;
+  for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery(DatasetBagTopics::kMarker))) {
+    if (const auto text = m.instantiate<std_msgs::String>()) markers[m.getTime().toNSec()] = text->data;
+  }
+  return markers;
+}
+
 }  // namespace
+
+std::string datasetMarkerText(const StoredFrameKind& kind) {
+  std::string text = kind.candidate ? kCandidateText : kPairText;
+  if (kind.frame_index) text += kFrameText + std::to_string(*kind.frame_index);
+  return text;
+}
+
+StoredFrameKind parseDatasetMarker(const std::string& text) {
+  StoredFrameKind kind;
+  kind.candidate = text.rfind(kCandidateText, 0) == 0;
+  const std::size_t at = text.rfind(kFrameText);
+  if (at != std::string::npos) {
+    const std::string digits = text.substr(at + std::strlen(kFrameText));
+    if (!digits.empty() && digits.find_first_not_of("0123456789") == std::string::npos && digits.size() < 20) {
+      kind.frame_index = std::stoull(digits);
+    }
+  }
+  return kind;
+}
 
 DatasetBagWriter::DatasetBagWriter(std::string path, bool append) : path_(std::move(path)) {
   if (path_.empty()) throw std::invalid_argument("dataset bag path is empty");
@@ -61,8 +95,8 @@ DatasetBagWriter::~DatasetBagWriter() = default;
 
 void DatasetBagWriter::write(const sensor_msgs::Image& image, const sensor_msgs::Image& mask,
                              const sensor_msgs::PointCloud2& clusters,
-                             const sensor_msgs::CameraInfo& camera_info) {
-  appender_->append(pairMessages(image, mask, clusters, camera_info));
+                             const sensor_msgs::CameraInfo& camera_info, const StoredFrameKind& kind) {
+  appender_->append(pairMessages(image, mask, clusters, camera_info, kind));
 }
 
 void DatasetBagWriter::clear() {
@@ -78,8 +112,8 @@ std::size_t DatasetBagWriter::indexBytes() const { return appender_->indexBytes(
 
 bool recoverDatasetBag(const std::string& path) { return recoverBagAppend(path); }
 
-DatasetBagContents readDatasetBag(const std::string& path) {
-  recoverDatasetBag(path);
+DatasetBagContents readDatasetBag(const std::string& path, bool recover) {
+  if (recover) recoverDatasetBag(path);
   DatasetBagContents contents;
   rosbag::Bag bag;
   try {
@@ -87,6 +121,7 @@ DatasetBagContents readDatasetBag(const std::string& path) {
   } catch (const rosbag::BagException& e) {
     fail(path, e.what());
   }
+  const std::map<std::uint64_t, std::string> markers = readMarkers(bag);
   const std::vector<std::string> topics = {DatasetBagTopics::kImage, DatasetBagTopics::kMask,
                                            DatasetBagTopics::kClusters,
                                            DatasetBagTopics::kCameraInfo};
@@ -116,6 +151,10 @@ DatasetBagContents readDatasetBag(const std::string& path) {
       contents.lidar_frame = frame.lidar_frame;
       contents.frames.push_back(std::move(frame));
       contents.pair_stamps_ns.push_back(image->header.stamp.toNSec());
+      // The chunk's messages are stamped with the image's time (pairMessages), clamped as there.
+      const ros::Time time = image->header.stamp < ros::TIME_MIN ? ros::TIME_MIN : image->header.stamp;
+      const auto marker = markers.find(time.toNSec());
+      contents.kinds.push_back(marker == markers.end() ? StoredFrameKind{} : parseDatasetMarker(marker->second));
     } catch (const std::invalid_argument& e) {
       contents.errors.push_back(e.what());
     }
@@ -129,11 +168,33 @@ DatasetBagContents readDatasetBag(const std::string& path) {
 std::size_t countDatasetBagPairs(const std::string& path) {
   rosbag::Bag bag;
   try {
-    bag.open(path, rosbag::bagmode::Read);  // reads the index only
-    return rosbag::View(bag, rosbag::TopicQuery(DatasetBagTopics::kMarker)).size();
+    bag.open(path, rosbag::bagmode::Read);
+    std::size_t pairs = 0;
+    for (const auto& [stamp, text] : readMarkers(bag)) pairs += parseDatasetMarker(text).candidate ? 0 : 1;
+    return pairs;
   } catch (const rosbag::BagException& e) {
     fail(path, e.what());
   }
+}
+
+RestoredDataset restoreDataset(DatasetBagContents contents, DatasetBuilder& builder) {
+  RestoredDataset restored;
+  restored.skipped = std::move(contents.errors);
+  for (std::size_t i = 0; i < contents.frames.size(); ++i) {
+    const StoredFrameKind kind = i < contents.kinds.size() ? contents.kinds[i] : StoredFrameKind{};
+    const OfferOutcome outcome = builder.restore(std::move(contents.frames[i]), kind);
+    if (outcome.decision == GateDecision::kKept) {
+      ++restored.pairs;
+    } else if (outcome.candidate) {
+      ++restored.candidates;
+    } else {
+      // A candidate when the builder does not pair by association is left out on purpose.
+      if (outcome.decision == GateDecision::kBadMessage) restored.skipped.push_back(outcome.error);
+      continue;
+    }
+    restored.stamps_ns.push_back(contents.pair_stamps_ns[i]);
+  }
+  return restored;
 }
 
 }  // namespace ros_io

@@ -20,6 +20,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <memory>
 #include <chrono>
@@ -219,6 +220,23 @@ std::optional<Extrinsic> readOptionalExtrinsic(const std::string& path, const st
   }
 }
 
+// A calibration_node dataset bag, read back as ~resume reads it (restoreDataset): pairs stay
+// pairs, association candidates candidates at their place among the frames the node was offered.
+BagIngestStats restoreFromDatasetBag(const std::string& path, DatasetBuilder& builder) {
+  DatasetBagContents contents = readDatasetBag(path, false);
+  BagIngestStats stats;
+  stats.frames = contents.frames.size() + contents.errors.size();
+  stats.messages_total = stats.messages_read = 3 * stats.frames;
+  const RestoredDataset restored = restoreDataset(std::move(contents), builder);
+  builder.flushPending();  // a stored pair without its motion gets none: no scans between them
+  for (const std::string& error : restored.skipped) ++stats.bad_message_errors[error];
+  if (restored.pairs == 0 && restored.candidates > 0) {
+    stats.damage = "the dataset bag holds " + std::to_string(restored.candidates) +
+                   " association candidates but no pair of the count rule, which the first fit needs";
+  }
+  return stats;
+}
+
 // What the bag gave: its camera, the kept pairs (in the builder) and how reading went.
 struct BagPairs {
   CameraModel camera;
@@ -237,18 +255,17 @@ BagPairs readPairs(const CalibrateBagOptions& options, CoreParameters& params, P
   openBag(bag, options.bag);
   const std::vector<BagTopicInfo> bag_topics = listBagTopics(bag);
   checkBagTopics(bag_topics, topics, options.bag);
-  // A calibration_node dataset bag holds only frames the node already kept: the skip rule
-  // applied again would drop three of every four.
-  for (const BagTopicInfo& t : bag_topics) {
-    if (t.topic == DatasetBagTopics::kMarker && params.gate.skip_frames != 0) {
-      params.gate.skip_frames = 0;
-      if (!options.quiet) {
-        std::fprintf(stderr,
-                     "calibrate_bag: note: a calibration_node dataset bag (already gated): "
-                     "skip rule off\n");
-      }
-    }
+  // A calibration_node dataset bag holds only frames the node already kept: they are read back as
+  // ~resume reads them (restoreFromDatasetBag). Through the detectors they are offered as frames,
+  // and the skip rule applied again would drop three of every four.
+  const bool dataset_bag = std::any_of(bag_topics.begin(), bag_topics.end(),
+                                       [](const BagTopicInfo& t) { return t.topic == DatasetBagTopics::kMarker; });
+  if (dataset_bag && !options.quiet) {
+    std::fprintf(stderr, "calibrate_bag: note: a calibration_node dataset bag: %s\n",
+                 options.detect ? "its frames through the detectors, skip rule off"
+                                : "its pairs and association candidates as the node kept them");
   }
+  if (dataset_bag && options.detect) params.gate.skip_frames = 0;
   BagPairs read;
   read.camera = options.camera_info_file.empty() ? cameraModelFromBag(bag, topics.camera_info, bag_topics)
                                                  : loadCameraInfoFile(options.camera_info_file);
@@ -272,7 +289,12 @@ BagPairs readPairs(const CalibrateBagOptions& options, CoreParameters& params, P
                     " frames, " + std::to_string(b.pairs().size()) + " pairs kept");
     return !g_interrupted;
   };
-  read.stats = ingestBag(bag, topics, params, builder, callbacks, detectors.get());
+  if (dataset_bag && !options.detect) {
+    bag.close();
+    read.stats = restoreFromDatasetBag(options.bag, builder);
+  } else {
+    read.stats = ingestBag(bag, topics, params, builder, callbacks, detectors.get());
+  }
   const BagIngestStats& stats = read.stats;
   bag.close();
   progress.update("read: " + std::to_string(stats.messages_read) + " messages, " +
@@ -284,6 +306,13 @@ BagPairs readPairs(const CalibrateBagOptions& options, CoreParameters& params, P
   if (!stats.damage.empty() && !builder.pairs().empty()) warn(stats.damage + "; using what was read");
   if (stats.undecodable_messages > 0) {
     warn(std::to_string(stats.undecodable_messages) + " messages could not be deserialised");
+  }
+  if (builder.pairs().empty() && dataset_bag && !options.detect) {
+    throw std::invalid_argument("no pairs in the dataset bag " + options.bag + ": " +
+                                (!stats.damage.empty() ? stats.damage
+                                 : stats.bad_message_errors.empty()
+                                     ? std::string("it holds no stored frame")
+                                     : "its frames could not be read, e.g. " + stats.bad_message_errors.begin()->first));
   }
   if (builder.pairs().empty()) {
     throw std::invalid_argument(noPairsMessage(stats, builder.counts(), params, topics));

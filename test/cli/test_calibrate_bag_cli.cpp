@@ -327,6 +327,29 @@ TEST_F(CalibrateBagCli, DatasetBagFromTheNodeIsNotSkippedAgain) {
   const RunResult r = run("--bag '" + path + "' --config '" + dir_ + "/skip.yaml' --output '" +
                           dir_ + "/out.yaml'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.err.find("dataset bag (already gated): skip rule off"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("dataset bag: its pairs and association candidates as the node kept them"), std::string::npos)
+      << r.err;
   EXPECT_EQ(YAML::LoadFile(dir_ + "/out.yaml")["pairs_collected"].as<int>(), spec.frames);
+}
+
+// Frames a node held as association candidates come back as candidates at their place (the
+// node's result again: test_node_resume.py); one that today's count rule keeps (here the
+// one-person frames, H_max 1) becomes a pair of that rule.
+TEST_F(CalibrateBagCli, ADatasetBagsCandidatesAreReadAsTheNodeHeldThem) {
+  BagSpec spec;  // one person in even frames, two in odd ones
+  const std::string path = bag(spec, "candidates.bag");
+  {
+    rosbag::Bag b(path, rosbag::bagmode::Append);
+    for (int f = 0; f < spec.frames; ++f) {
+      std_msgs::String marker;
+      marker.data = thermal_lidar_calibration::ros_io::datasetMarkerText({true, static_cast<std::uint64_t>(4 * f)});
+      b.write(thermal_lidar_calibration::ros_io::DatasetBagTopics::kMarker, ros::Time(1000.0 + 0.1 * f), marker);
+    }
+  }
+  std::ofstream(dir_ + "/h1.yaml") << "population_size: 150\nmax_iterations: 80\nseed: 3\nmax_people: 1\nuncertainty: false\n";
+  const RunResult r = run("--bag '" + path + "' --config '" + dir_ + "/h1.yaml' --output '" + dir_ + "/out.yaml'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const YAML::Node y = YAML::LoadFile(dir_ + "/out.yaml");
+  EXPECT_EQ(y["pairs_by_rule"]["counts"].as<int>(), spec.frames / 2) << r.err;
+  EXPECT_EQ(y["association"]["candidate_frames"].as<int>(), spec.frames / 2) << r.err;
 }

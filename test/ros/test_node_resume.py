@@ -84,6 +84,20 @@ def shift_stamps(src, dst):
     return images, round_trips
 
 
+def stored_frames(path):
+    """(pairs, association candidates, newest stamp) the dataset bag's markers list."""
+    pairs = candidates = 0
+    newest = 0.0
+    with rosbag.Bag(path) as bag:
+        for _, msg, t in bag.read_messages(topics=["/thermal_lidar_calibration/dataset_pair"]):
+            if msg.data.startswith("association candidate"):
+                candidates += 1
+            else:
+                pairs += 1
+            newest = max(newest, t.to_sec())
+    return pairs, candidates, newest
+
+
 def wait_for(predicate, timeout_s=HANG_GUARD_S):
     end = time.time() + timeout_s
     while time.time() < end and not rospy.is_shutdown():
@@ -101,7 +115,8 @@ class KillAndResume(unittest.TestCase):
         generated = os.path.join(self.work, "generated.bag")
         with open(os.path.join(self.work, "generator.log"), "w") as log:
             subprocess.run([executable("make_synthetic_bag"), "--output", generated, "--truth",
-                            os.path.join(self.work, "truth.yaml"), "--frames", "300", "--seed", "11"],
+                            os.path.join(self.work, "truth.yaml"), "--frames", "300", "--seed", "11",
+                            "--noise", "realistic"],
                            check=True, stdout=log, stderr=subprocess.STDOUT)
         self.bag = os.path.join(self.work, "synthetic.bag")
         images, round_trips = shift_stamps(generated, self.bag)
@@ -162,23 +177,47 @@ class KillAndResume(unittest.TestCase):
         self.assertLess(kept_before, required)
         self.assertTrue(os.path.exists(self.dataset_bag))
         self.assertFalse(os.path.exists(self.result_file))
+        # Pairing by association (the default): the frames held as candidates are in the bag too.
+        stored_pairs, stored_candidates, killed_at = stored_frames(self.dataset_bag)
+        self.assertEqual(stored_pairs, kept_before)
+        self.assertGreater(stored_candidates, 0, "no association candidate in the dataset bag")
 
         rospy.set_param(NODE + "/resume", True)
         self.start_node()
         resumed = self.statuses.first_after_start.pairs_resumed
         self.assertEqual(resumed, kept_before, "pairs lost by the kill (or more than were kept)")
+        self.assertEqual(self.statuses.first_after_start.association_candidates, stored_candidates,
+                         "association candidates lost by the kill")
         # Replay the whole bag: frames already in the dataset are not added twice.
         self.play()
         self.assertTrue(wait_for(lambda: self.statuses.last.state_name == "done"),
                         "not done: %s" % self.statuses.last)
         with open(self.result_file) as f:
             result = yaml.safe_load(f)
-        self.assertEqual(result["pairs_collected"], required)
+        self.assertEqual(result["pairs_by_rule"]["counts"], required)
         stamps = [p["stamp"] for p in result["pairs"]]
         self.assertEqual(len(stamps), len(set(stamps)), "a pair was added twice")
         self.assertEqual(self.statuses.last.pairs_resumed, resumed)
-        rospy.loginfo("resumed %d pairs (%d kept before the kill), finished with %d",
-                      resumed, kept_before, result["pairs_collected"])
+        # Candidates from before the kill were paired by association in the resumed fit.
+        early = [p for p in result["pairs"] if p["rule"] == "association" and p["stamp"] <= killed_at + 1e-6]
+        self.assertGreater(len(early), 0, "no association pair from the candidates stored before the kill")
+        # calibrate_bag on the dataset bag reads it as ~resume does: the node's result again, its
+        # association pairs included.
+        again = os.path.join(self.work, "calibrate_bag.yaml")
+        args = [executable("calibrate_bag"), "--bag", self.dataset_bag, "--output", again, "--quiet"]
+        for path in rospy.get_param("~config_files").split()[1:]:  # the first is the defaults
+            args += ["--config", path]
+        with open(os.path.join(self.work, "calibrate_bag.log"), "w") as log:
+            subprocess.run(args, check=True, stdout=log, stderr=subprocess.STDOUT)
+        with open(again) as f:
+            rerun = yaml.safe_load(f)
+        self.assertEqual(rerun["pairs_by_rule"], result["pairs_by_rule"])
+        for key in ("rotation_vector", "translation"):
+            for a, b in zip(rerun[key], result[key]):
+                self.assertAlmostEqual(a, b, places=9, msg=key)
+        rospy.loginfo("resumed %d pairs and %d candidates (%d pairs kept before the kill), finished with %d, "
+                      "%d association pairs from before the kill", resumed, stored_candidates, kept_before,
+                      result["pairs_by_rule"]["counts"], len(early))
 
 
 if __name__ == "__main__":

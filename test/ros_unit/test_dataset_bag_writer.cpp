@@ -232,6 +232,40 @@ TEST(DatasetBagWriter, ContinuesABagWrittenByRosbag) {
   EXPECT_TRUE(contents.errors.empty());
 }
 
+// Pairing by association: the frames held as candidates are stored with the pairs, each with
+// its kind and its place among the frames offered; countDatasetBagPairs counts the pairs only,
+// and a marker from before the frame number was recorded reads as a pair in order.
+TEST(DatasetBagWriter, StoresAssociationCandidatesWithTheirKindAndPlace) {
+  const std::string dir = tlc::test_support::tempDir("tlc_dataset_kinds_");
+  const std::string path = dir + "/dataset.bag";
+  {
+    DatasetBagWriter writer(path, false);
+    const PairMessages a = makePair(100.0, 1), b = makePair(100.4, 2), c = makePair(101.0, 3);
+    writer.write(a.image, a.mask, a.clusters, a.info, {false, 8});
+    writer.write(b.image, b.mask, b.clusters, b.info, {true, 12});
+    writer.write(c.image, c.mask, c.clusters, c.info, {false, 17});
+  }
+  const auto contents = tlc::ros_io::readDatasetBag(path);
+  ASSERT_EQ(contents.frames.size(), 3u);
+  ASSERT_EQ(contents.kinds.size(), 3u);
+  EXPECT_FALSE(contents.kinds[0].candidate);
+  EXPECT_EQ(contents.kinds[0].frame_index, 8u);
+  EXPECT_TRUE(contents.kinds[1].candidate);
+  EXPECT_EQ(contents.kinds[1].frame_index, 12u);
+  EXPECT_EQ(contents.kinds[2].frame_index, 17u);
+  EXPECT_EQ(tlc::ros_io::countDatasetBagPairs(path), 2u);
+
+  const tlc::StoredFrameKind old_pair = tlc::ros_io::parseDatasetMarker("pair kept by calibration_node (already gated)");
+  EXPECT_FALSE(old_pair.candidate);
+  EXPECT_FALSE(old_pair.frame_index.has_value());
+  EXPECT_FALSE(tlc::ros_io::parseDatasetMarker("pair").frame_index.has_value());
+  EXPECT_FALSE(tlc::ros_io::parseDatasetMarker("pair; frame 12x").frame_index.has_value());
+  const tlc::StoredFrameKind round = tlc::ros_io::parseDatasetMarker(tlc::ros_io::datasetMarkerText({true, 40}));
+  EXPECT_TRUE(round.candidate);
+  EXPECT_EQ(round.frame_index, 40u);
+  std::filesystem::remove_all(dir);
+}
+
 // kill -9 at random moments while pairs are appended: every pair whose write() returned (reported
 // through a pipe) is in the bag afterwards, and the bag is continued by the next writer. Each
 // trial kills after 0-3 acknowledged pairs, at a random moment of the append that follows: the

@@ -31,6 +31,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
@@ -83,6 +84,9 @@ class CalibrationNode {
   void onClusters(const sensor_msgs::PointCloud2::ConstPtr& msg);
   void observeScan(const sensor_msgs::PointCloud2& clusters);  // issue 21: people's motion
   void handleFinishedPairs();  // pairs with their motion: the dataset bag, the fit, the drift watch
+  void recordHeldCandidates();  // association candidates the builder holds: into the dataset bag
+  struct KeptMessages;
+  void record(const KeptMessages& kept, const CalibrationPair& pair, const StoredFrameKind& kind);
   void finishWaitingPairs();   // timer: no scan for kScanSilenceS finishes the waiting pairs
   void reportSyncFault(const std::string& topic, const FrameSynchronizer::AddOutcome& outcome);
   void reportFrameIdConflict();
@@ -156,6 +160,10 @@ class CalibrationNode {
     sensor_msgs::PointCloud2::ConstPtr clusters;
   };
   std::deque<KeptMessages> kept_messages_;
+  // The same for frames offered as association candidates, by frame index: recorded when the
+  // builder holds them (its bound may pass some over), forgotten once frames after them are done.
+  std::map<std::uint64_t, KeptMessages> candidate_messages_;
+  std::optional<std::uint64_t> last_candidate_recorded_;  // frame index (restored ones included)
   std::size_t finished_pairs_ = 0;  // builder pairs already handed on (recorded, fitted, watched)
   ros::WallTime last_scan_time_;
   std::size_t pairs_resumed_ = 0;

@@ -20,10 +20,12 @@ class DatasetRecorder {
   // `path` "" = do not record. `append`: continue the bag (~resume) that holds `pairs_in_bag`.
   DatasetRecorder(const std::string& path, bool append, std::size_t pairs_in_bag);
 
-  // Appends one kept pair; false if it is not on disk (recording off or stopped, or this write
-  // failed: then recording stops and the error is logged).
+  // Appends one kept pair, or a frame held as an association candidate (`kind`); false if it is
+  // not on disk (recording off or stopped, or this write failed: then recording stops and the
+  // error is logged).
   bool record(const sensor_msgs::Image& image, const sensor_msgs::Image& mask,
-              const sensor_msgs::PointCloud2& clusters, const sensor_msgs::CameraInfo& info);
+              const sensor_msgs::PointCloud2& clusters, const sensor_msgs::CameraInfo& info,
+              const StoredFrameKind& kind = {});
   // ~reset: deletes the bag; recording starts again with the next pair. Returns what happened,
   // in words ("deleted <path>", "<path> did not exist", the error).
   std::string clear();
@@ -32,6 +34,7 @@ class DatasetRecorder {
   bool recording() const { return enabled() && stop_reason_.empty(); }
   const std::string& path() const { return path_; }
   std::size_t pairsInBag() const { return pairs_in_bag_; }
+  std::size_t candidatesRecorded() const { return candidates_recorded_; }  // this session
   std::size_t pairsNotRecorded() const { return pairs_not_recorded_; }
   // "" while recording (or when off); else why recording stopped, with path and free space.
   const std::string& stopReason() const { return stop_reason_; }
@@ -48,6 +51,7 @@ class DatasetRecorder {
   std::unique_ptr<DatasetBagWriter> writer_;
   std::size_t pairs_in_bag_ = 0;
   std::size_t pairs_not_recorded_ = 0;  // kept since recording stopped (in memory only)
+  std::size_t candidates_recorded_ = 0;
   std::string stop_reason_;
 };
 

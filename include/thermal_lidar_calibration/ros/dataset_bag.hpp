@@ -1,5 +1,6 @@
 #pragma once
-// The node's dataset on disk: every kept pair is appended to a ROS 1 bag as soon as it is kept,
+// The node's dataset on disk: every kept pair (and, pairing by association, every frame held as
+// a candidate for it) is appended to a ROS 1 bag as soon as it is kept,
 // laid out with the INTERFACE topics (/thermal/image_raw, /thermal/human_mask,
 // /lidar/human_clusters, /thermal/camera_info) so calibrate_bag can re-run on it. The original
 // messages are stored (not the binarised masks), so a re-run decodes exactly what the node saw.
@@ -10,6 +11,7 @@
 
 #include "thermal_lidar_calibration/core/calibration_pair.hpp"
 #include "thermal_lidar_calibration/core/camera_model.hpp"
+#include "thermal_lidar_calibration/core/dataset_builder.hpp"
 #include "thermal_lidar_calibration/ros/bag_appender.hpp"
 
 #include <sensor_msgs/CameraInfo.h>
@@ -32,9 +34,17 @@ struct DatasetBagTopics {
   static constexpr const char* kClusters = "/lidar/human_clusters";
   static constexpr const char* kCameraInfo = "/thermal/camera_info";
   // std_msgs/String written with each pair: tells calibrate_bag that these frames were already
-  // gated by the node, so it must not apply the skip rule a second time.
+  // gated by the node, so it must not apply the skip rule a second time. Its text says which
+  // rule kept the frame and the frame's place among those offered (StoredFrameKind):
+  // "pair kept by calibration_node (already gated); frame 120" or
+  // "association candidate held by calibration_node; frame 124".
   static constexpr const char* kMarker = "/thermal_lidar_calibration/dataset_pair";
 };
+
+// The marker's text for a stored frame, and the kind read back from it (a marker without a frame
+// number, from an older dataset bag, is a pair in order).
+std::string datasetMarkerText(const StoredFrameKind& kind);
+StoredFrameKind parseDatasetMarker(const std::string& text);
 
 class DatasetBagWriter {
  public:
@@ -47,7 +57,8 @@ class DatasetBagWriter {
   // in the file. Throws std::runtime_error naming the path and the reason; the bag then holds
   // the pairs it held before.
   void write(const sensor_msgs::Image& image, const sensor_msgs::Image& mask,
-             const sensor_msgs::PointCloud2& clusters, const sensor_msgs::CameraInfo& camera_info);
+             const sensor_msgs::PointCloud2& clusters, const sensor_msgs::CameraInfo& camera_info,
+             const StoredFrameKind& kind = {});
   // Deletes the bag (and any journal); the next write() starts a new one.
   void clear();
 
@@ -71,18 +82,31 @@ struct DatasetBagContents {
   // Exact image header stamps (ros::Time::toNSec) of `frames`, index for index. frame.stamp_s is
   // toSec(), which does not round-trip to nanoseconds at epoch times; de-duplicate on these.
   std::vector<std::uint64_t> pair_stamps_ns;
+  // How each of `frames` was kept (its marker), index for index.
+  std::vector<StoredFrameKind> kinds;
   std::optional<CameraModel> camera;    // from the last camera_info in the bag
   std::string camera_frame, lidar_frame;
   std::vector<std::string> errors;      // frames that could not be decoded (skipped)
 };
-// Reads a dataset bag written by DatasetBagWriter (recovering it first). Throws
+// Reads a dataset bag written by DatasetBagWriter (recovering it first, unless `recover` is
+// false: a reader that is not its writer must not touch a bag a node may be appending to). Throws
 // std::runtime_error if the bag cannot be opened.
-DatasetBagContents readDatasetBag(const std::string& path);
+DatasetBagContents readDatasetBag(const std::string& path, bool recover = true);
 
-// The number of pairs the bag at `path` holds, read back from its index (one marker message per
-// pair), for answers that must be true rather than what the writer believes. Throws
+// The number of pairs the bag at `path` holds (association candidates not counted), read back
+// from its markers, for answers that must be true rather than what the writer believes. Throws
 // std::runtime_error naming the bag when it cannot be read.
 std::size_t countDatasetBagPairs(const std::string& path);
+
+// The stored frames into `builder` (DatasetBuilder::restore, in the order they were stored):
+// the one way ~resume and calibrate_bag read a dataset bag back.
+struct RestoredDataset {
+  std::size_t pairs = 0;       // kept as pairs
+  std::size_t candidates = 0;  // held as association candidates (before the builder's bound)
+  std::vector<std::uint64_t> stamps_ns;  // the exact image stamps of the frames restored
+  std::vector<std::string> skipped;      // why a stored frame was not restored, one line each
+};
+RestoredDataset restoreDataset(DatasetBagContents contents, DatasetBuilder& builder);
 
 }  // namespace ros_io
 }  // namespace thermal_lidar_calibration

@@ -38,7 +38,7 @@ ParameterTable<NodeParameters> makeParameterTable() {
             TextRule::required("must name the result YAML file"),
             "result YAML; relative paths are under ROS_HOME");
   node.text("dataset_bag", &NodeParameters::dataset_bag, TextRule::optional("not recorded"),
-            "bag recording every kept pair");
+            "bag recording every kept pair and association candidate");
   node.boolean("resume", &NodeParameters::resume,
                "reload dataset_bag at start and continue collecting", "needs dataset_bag");
   node.text("camera_info_file", &NodeParameters::camera_info_file,
