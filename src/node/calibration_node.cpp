@@ -239,7 +239,7 @@ void CalibrationNode::reportSilentInputs() {
 void CalibrationNode::onTimer(const ros::WallTimerEvent& /*event*/) {
   guard_.run("the status timer", [&] {
     if (auto outcome = worker_.takeOutcome()) handleOutcome(std::move(*outcome));
-    if (resumed_fit_waits_for_tf_ && (ros::WallTime::now() - start_time_).toSec() >= params_.tf_check_wait_s) {
+    if (resumed_fit_waits_for_tf_ && (initialTfInTree() || (ros::WallTime::now() - start_time_).toSec() >= params_.tf_check_wait_s)) {
       resumed_fit_waits_for_tf_ = false;
       startOptimization("the resumed dataset already holds ~pairs_required pairs");
     }

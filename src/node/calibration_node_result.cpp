@@ -28,6 +28,12 @@ std::optional<JobReference> CalibrationNode::runReference() const {
   return reference;
 }
 
+bool CalibrationNode::initialTfInTree() const {
+  if (!builder_ || builder_->lidarFrame().empty() || builder_->cameraFrame().empty()) return false;
+  std::string error;
+  return tf_publisher_->lookupExtrinsic(builder_->lidarFrame(), builder_->cameraFrame(), &error).has_value();
+}
+
 std::optional<InitialExtrinsic> CalibrationNode::initialExtrinsic() {
   if (initial_file_) return initial_file_;
   if (!params_.initial_from_tf || initial_tf_) return initial_tf_;

@@ -20,7 +20,9 @@ import unittest
 import rosbag
 import rospy
 import rostest
+import tf2_ros
 import yaml
+from geometry_msgs.msg import TransformStamped
 from std_msgs.msg import UInt32
 from thermal_lidar_calibration.msg import CalibrationStatus
 
@@ -218,6 +220,53 @@ class KillAndResume(unittest.TestCase):
         rospy.loginfo("resumed %d pairs and %d candidates (%d pairs kept before the kill), finished with %d, "
                       "%d association pairs from before the kill", resumed, stored_candidates, kept_before,
                       result["pairs_by_rule"]["counts"], len(early))
+
+
+    def test_resumed_fit_starts_from_the_tf(self):
+        """~resume with ~initial_from_tf: the resumed dataset (pairs_required pairs already) is
+        fitted once the tf between the two frames is in the tree, and association starts from it."""
+        required = rospy.get_param(NODE + "/pairs_required")
+        node = self.start_node()
+        self.play()
+        self.assertTrue(wait_for(lambda: self.statuses.last.state_name == "done"),
+                        "not done: %s" % self.statuses.last)
+        node.send_signal(signal.SIGINT)
+        node.wait()
+        os.remove(self.result_file)
+        self.assertGreaterEqual(stored_frames(self.dataset_bag)[0], required)
+
+        with open(os.path.join(self.work, "truth.yaml")) as f:
+            truth = yaml.safe_load(f)
+        broadcaster = tf2_ros.StaticTransformBroadcaster()
+        broadcaster.sendTransform(camera_in_lidar(truth))  # latched: there before the node starts
+        rospy.set_param(NODE + "/resume", True)
+        rospy.set_param(NODE + "/initial_from_tf", True)
+        # The fit starts as soon as the tf is found; this bound only ends a wait for a missing one.
+        rospy.set_param(NODE + "/tf_check_wait_s", 60.0)
+        self.start_node()
+        self.assertTrue(wait_for(lambda: self.statuses.last.state_name == "done"),
+                        "not done: %s" % self.statuses.last)
+        with open(self.result_file) as f:
+            result = yaml.safe_load(f)
+        self.assertEqual(self.statuses.last.pairs_resumed, result["pairs_by_rule"]["counts"])
+        self.assertTrue(result["association"]["initial_extrinsic_used"], result["association"])
+
+
+def camera_in_lidar(truth):
+    """The truth (p_C = R p_L + t) as tf has it: the camera's pose in the LiDAR frame."""
+    r = truth["rotation_matrix"]
+    t = truth["translation"]
+    rt = [[r[0], r[3], r[6]], [r[1], r[4], r[7]], [r[2], r[5], r[8]]]  # R^T
+    msg = TransformStamped()
+    msg.header.stamp = rospy.Time.now()
+    msg.header.frame_id = truth["lidar_frame"]
+    msg.child_frame_id = truth["camera_frame"]
+    origin = [-sum(rt[i][k] * t[k] for k in range(3)) for i in range(3)]
+    msg.transform.translation.x, msg.transform.translation.y, msg.transform.translation.z = origin
+    x, y, z, w = truth["quaternion_xyzw"]  # of R; R^T is its conjugate
+    msg.transform.rotation.x, msg.transform.rotation.y, msg.transform.rotation.z = -x, -y, -z
+    msg.transform.rotation.w = w
+    return msg
 
 
 if __name__ == "__main__":

@@ -207,9 +207,11 @@ class CalibrationNode {
   std::optional<InitialExtrinsic> initial_file_;  // ~initial_extrinsic_file, read at start
   std::optional<InitialExtrinsic> initial_tf_;    // ~initial_from_tf: the tf, once found
   bool initial_tf_warned_ = false;                // its absence was said
-  // ~resume with ~initial_from_tf: the resumed dataset's fit waits until the tf tree has been
-  // listened to for ~tf_check_wait_s (the timer starts it).
+  // ~resume with ~initial_from_tf: the resumed dataset's fit waits until the tf between the two
+  // frames is in the tree, or the tree has been listened to for ~tf_check_wait_s without it (the
+  // timer starts it).
   bool resumed_fit_waits_for_tf_ = false;
+  bool initialTfInTree() const;
   std::optional<double> reference_time_offset_s_;  // its camera time offset, if it applied one
   std::string camera_frame_, lidar_frame_;
   std::string published_child_;
