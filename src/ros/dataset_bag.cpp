@@ -46,13 +46,15 @@ std::vector<BagAppender::Message> pairMessages(const sensor_msgs::Image& image,
           BagAppender::message(DatasetBagTopics::kImage, time, image),
           BagAppender::message(DatasetBagTopics::kMask, time, mask),
           BagAppender::message(DatasetBagTopics::kClusters, time, clusters),
-          BagAppender::message(DatasetBagTopics::kMarker, time, marker)};
+          BagAppender::message(kind.candidate ? DatasetBagTopics::kCandidateMarker : DatasetBagTopics::kMarker,
+                               time, marker)};
 }
 
 // Marker text by exact image stamp.
 std::map<std::uint64_t, std::string> readMarkers(rosbag::Bag& bag) {
   std::map<std::uint64_t, std::string> markers;
-  for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery(DatasetBagTopics::kMarker))) {
+  const std::vector<std::string> topics = {DatasetBagTopics::kMarker, DatasetBagTopics::kCandidateMarker};
+  for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery(topics))) {
     if (const auto text = m.instantiate<std_msgs::String>()) markers[m.getTime().toNSec()] = text->data;
   }
   return markers;
@@ -168,10 +170,8 @@ DatasetBagContents readDatasetBag(const std::string& path, bool recover) {
 std::size_t countDatasetBagPairs(const std::string& path) {
   rosbag::Bag bag;
   try {
-    bag.open(path, rosbag::bagmode::Read);
-    std::size_t pairs = 0;
-    for (const auto& [stamp, text] : readMarkers(bag)) pairs += parseDatasetMarker(text).candidate ? 0 : 1;
-    return pairs;
+    bag.open(path, rosbag::bagmode::Read);  // reads the index only
+    return rosbag::View(bag, rosbag::TopicQuery(DatasetBagTopics::kMarker)).size();
   } catch (const rosbag::BagException& e) {
     fail(path, e.what());
   }

@@ -259,7 +259,10 @@ BagPairs readPairs(const CalibrateBagOptions& options, CoreParameters& params, P
   // ~resume reads them (restoreFromDatasetBag). Through the detectors they are offered as frames,
   // and the skip rule applied again would drop three of every four.
   const bool dataset_bag = std::any_of(bag_topics.begin(), bag_topics.end(),
-                                       [](const BagTopicInfo& t) { return t.topic == DatasetBagTopics::kMarker; });
+                                       [](const BagTopicInfo& t) {
+                                         return t.topic == DatasetBagTopics::kMarker ||
+                                                t.topic == DatasetBagTopics::kCandidateMarker;
+                                       });
   if (dataset_bag && !options.quiet) {
     std::fprintf(stderr, "calibrate_bag: note: a calibration_node dataset bag: %s\n",
                  options.detect ? "its frames through the detectors, skip rule off"

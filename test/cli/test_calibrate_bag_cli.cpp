@@ -343,7 +343,8 @@ TEST_F(CalibrateBagCli, ADatasetBagsCandidatesAreReadAsTheNodeHeldThem) {
     for (int f = 0; f < spec.frames; ++f) {
       std_msgs::String marker;
       marker.data = thermal_lidar_calibration::ros_io::datasetMarkerText({true, static_cast<std::uint64_t>(4 * f)});
-      b.write(thermal_lidar_calibration::ros_io::DatasetBagTopics::kMarker, ros::Time(1000.0 + 0.1 * f), marker);
+      b.write(thermal_lidar_calibration::ros_io::DatasetBagTopics::kCandidateMarker, ros::Time(1000.0 + 0.1 * f),
+              marker);
     }
   }
   std::ofstream(dir_ + "/h1.yaml") << "population_size: 150\nmax_iterations: 80\nseed: 3\nmax_people: 1\nuncertainty: false\n";

@@ -91,8 +91,10 @@ def stored_frames(path):
     pairs = candidates = 0
     newest = 0.0
     with rosbag.Bag(path) as bag:
-        for _, msg, t in bag.read_messages(topics=["/thermal_lidar_calibration/dataset_pair"]):
-            if msg.data.startswith("association candidate"):
+        for topic, msg, t in bag.read_messages(topics=["/thermal_lidar_calibration/dataset_pair",
+                                                        "/thermal_lidar_calibration/dataset_candidate"]):
+            if topic.endswith("candidate"):
+                assert msg.data.startswith("association candidate held by calibration_node; frame "), msg.data
                 candidates += 1
             else:
                 pairs += 1

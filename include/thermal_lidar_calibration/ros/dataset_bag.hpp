@@ -34,11 +34,13 @@ struct DatasetBagTopics {
   static constexpr const char* kClusters = "/lidar/human_clusters";
   static constexpr const char* kCameraInfo = "/thermal/camera_info";
   // std_msgs/String written with each pair: tells calibrate_bag that these frames were already
-  // gated by the node, so it must not apply the skip rule a second time. Its text says which
-  // rule kept the frame and the frame's place among those offered (StoredFrameKind):
-  // "pair kept by calibration_node (already gated); frame 120" or
-  // "association candidate held by calibration_node; frame 124".
+  // gated by the node, so it must not apply the skip rule a second time. Its text says the
+  // frame's place among those offered (StoredFrameKind): "pair kept by calibration_node (already
+  // gated); frame 120".
   static constexpr const char* kMarker = "/thermal_lidar_calibration/dataset_pair";
+  // The same for a frame held as an association candidate, on a topic of its own so that the
+  // bag's index alone counts the pairs: "association candidate held by calibration_node; frame 124".
+  static constexpr const char* kCandidateMarker = "/thermal_lidar_calibration/dataset_candidate";
 };
 
 // The marker's text for a stored frame, and the kind read back from it (a marker without a frame
@@ -94,8 +96,8 @@ struct DatasetBagContents {
 DatasetBagContents readDatasetBag(const std::string& path, bool recover = true);
 
 // The number of pairs the bag at `path` holds (association candidates not counted), read back
-// from its markers, for answers that must be true rather than what the writer believes. Throws
-// std::runtime_error naming the bag when it cannot be read.
+// from its index (one marker message per pair), for answers that must be true rather than what
+// the writer believes. Throws std::runtime_error naming the bag when it cannot be read.
 std::size_t countDatasetBagPairs(const std::string& path);
 
 // The stored frames into `builder` (DatasetBuilder::restore, in the order they were stored):
