@@ -168,114 +168,147 @@ CameraModel cameraModelFromBag(rosbag::Bag& bag, const std::string& topic,
                               " in the bag; pass --camera-info FILE.yaml");
 }
 
+namespace {
+
+// One bag through the synchronizer into the builder: what ingestBag does, message by message.
+class BagReader {
+ public:
+  BagReader(const BagTopics& topics, const CoreParameters& params, DatasetBuilder& builder,
+            const IngestCallbacks& callbacks, PersonDetectionAdapter* detectors)
+      : topics_(topics),
+        builder_(builder),
+        callbacks_(callbacks),
+        detectors_(detectors),
+        time_field_(PointTimeField::parse(params.point_time_field)),
+        sync_(params.sync_queue_size, params.sync_slop_s,
+              [this](const sensor_msgs::Image::ConstPtr& image, const sensor_msgs::Image::ConstPtr& mask,
+                     const sensor_msgs::PointCloud2::ConstPtr& clusters) { onFrame(image, mask, clusters); }) {}
+
+  BagIngestStats read(rosbag::Bag& bag) {
+    std::vector<std::string> wanted = {topics_.image, topics_.mask, topics_.clusters};
+    if (topics_.detect) wanted = {topics_.image, topics_.points};
+    try {
+      rosbag::View view(bag, rosbag::TopicQuery(wanted));
+      stats_.messages_total = view.size();
+      for (auto it = view.begin(); it != view.end(); ++it) {
+        ++stats_.messages_read;
+        add(*it);
+        if (callbacks_.progress && !callbacks_.progress(stats_, builder_)) {
+          stats_.interrupted = true;
+          break;
+        }
+      }
+    } catch (const std::exception& e) {
+      stats_.damage = "the bag could not be read past message " + std::to_string(stats_.messages_read) + " (" +
+                      e.what() + ")";
+    }
+    if (!stats_.interrupted) {
+      sync_.flush();             // the last frame of the bag counts too
+      builder_.flushPending();  // and the pairs waiting for scans that will not come
+    }
+    return stats_;
+  }
+
+ private:
+  void add(const rosbag::MessageInstance& m) {
+    try {
+      if (topics_.detect) {
+        addDetected(m);
+      } else if (m.getTopic() == topics_.clusters) {
+        const auto clusters = m.instantiate<sensor_msgs::PointCloud2>();
+        if (clusters) observe(*clusters, m.getTopic());
+        note(m.getTopic(), sync_.addClusters(clusters));
+      } else if (m.getTopic() == topics_.image) {
+        note(m.getTopic(), sync_.addImage(m.instantiate<sensor_msgs::Image>()));
+      } else {
+        note(m.getTopic(), sync_.addMask(m.instantiate<sensor_msgs::Image>()));
+      }
+    } catch (const ros::Exception& e) {
+      // One message could not be deserialised (truncated record): skip it.
+      ++stats_.undecodable_messages;
+      if (stats_.undecodable_messages == 1 && callbacks_.warn) {
+        callbacks_.warn("cannot deserialise a message on " + m.getTopic() + " (" + e.what() +
+                        "); skipping such messages");
+      }
+    }
+  }
+
+  // --detect: the detectors make each raw message into what a mask / clusters topic would carry;
+  // a message they cannot read is a bad frame like any other.
+  void addDetected(const rosbag::MessageInstance& m) {
+    try {
+      if (m.getTopic() == topics_.points) {
+        const auto cloud = m.instantiate<sensor_msgs::PointCloud2>();
+        if (!cloud) return;
+        const sensor_msgs::PointCloud2::ConstPtr clusters = detectors_->detect(*cloud, m.getTopic()).clusters;
+        if (clusters) observe(*clusters, topics_.clusters);
+        note(m.getTopic(), sync_.addClusters(clusters));
+      } else {
+        const auto image = m.instantiate<sensor_msgs::Image>();
+        if (!image) return;
+        const SegmentedImage seg = detectors_->segment(image, m.getTopic());
+        note(m.getTopic(), sync_.addImage(seg.image));
+        note(topics_.mask, sync_.addMask(seg.mask));
+      }
+    } catch (const std::invalid_argument& e) {
+      reportBad(m.getTime().toSec(), e.what());
+    }
+  }
+
+  void onFrame(const sensor_msgs::Image::ConstPtr& image, const sensor_msgs::Image::ConstPtr& mask,
+               const sensor_msgs::PointCloud2::ConstPtr& clusters) {
+    ++stats_.frames;
+    const OfferOutcome outcome = builder_.offer([&] {
+      return decodeFrame(*image, *mask, *clusters, topics_.image, topics_.mask, topics_.clusters, time_field_);
+    });
+    if (outcome.decision != GateDecision::kBadMessage) return;
+    reportBad(image->header.stamp.toSec(), outcome.error.empty() ? "undecodable frame" : outcome.error);
+  }
+
+  // Every clusters message, kept frame or not, is a scan the people's motion is measured from
+  // (issue 21). One that cannot be decoded is reported when its frame is.
+  void observe(const sensor_msgs::PointCloud2& clusters, const std::string& topic) {
+    if (!builder_.tracksMotion()) return;
+    try {
+      builder_.observeScan(decodeScanPeople(clusters, topic, time_field_));
+    } catch (const std::invalid_argument&) {
+    }
+  }
+
+  // The node's account and wording (BadFrameReporter), in the bag's own time: one line per kind
+  // of fault and 5 s of data, counting the rest; every error also counted for the summary.
+  void reportBad(double stamp_s, const std::string& error) {
+    ++stats_.bad_message_errors[error];
+    const std::string line = reporter_.reportAtStamp(stamp_s, "", error);
+    if (!line.empty() && callbacks_.warn) callbacks_.warn(line);
+  }
+
+  // Messages whose stamps ApproximateTime cannot handle are refused by the synchronizer: say so
+  // for the first few.
+  void note(const std::string& topic, const FrameSynchronizer::AddOutcome& outcome) {
+    if (outcome.fault.empty() || ++stamp_faults_ > kMaxDistinctWarnings || !callbacks_.warn) return;
+    callbacks_.warn(topic + ": " + outcome.fault +
+                    (stamp_faults_ == kMaxDistinctWarnings ? " (further ones not shown)" : ""));
+  }
+
+  const BagTopics& topics_;
+  DatasetBuilder& builder_;
+  const IngestCallbacks& callbacks_;
+  PersonDetectionAdapter* detectors_;
+  const PointTimeField time_field_;
+  BagIngestStats stats_;
+  BadFrameReporter reporter_;
+  std::uint64_t stamp_faults_ = 0;
+  FrameSynchronizer sync_;
+};
+
+}  // namespace
+
 BagIngestStats ingestBag(rosbag::Bag& bag, const BagTopics& topics, const CoreParameters& params,
                          DatasetBuilder& builder, const IngestCallbacks& callbacks,
                          PersonDetectionAdapter* detectors) {
   if (topics.detect && !detectors) throw std::logic_error("ingestBag: detect without detectors");
-  BagIngestStats stats;
-  // The node's account and wording (BadFrameReporter), in the bag's own time: one line per kind
-  // of fault and 5 s of data, counting the rest; every error also counted for the summary.
-  BadFrameReporter reporter;
-  const auto report_bad = [&](double stamp_s, const std::string& error) {
-    ++stats.bad_message_errors[error];
-    const std::string line = reporter.reportAtStamp(stamp_s, "", error);
-    if (!line.empty() && callbacks.warn) callbacks.warn(line);
-  };
-  const PointTimeField time_field = PointTimeField::parse(params.point_time_field);
-  const auto on_frame = [&](const sensor_msgs::Image::ConstPtr& image,
-                            const sensor_msgs::Image::ConstPtr& mask,
-                            const sensor_msgs::PointCloud2::ConstPtr& clusters) {
-    ++stats.frames;
-    const OfferOutcome outcome = builder.offer([&] {
-      return decodeFrame(*image, *mask, *clusters, topics.image, topics.mask, topics.clusters, time_field);
-    });
-    if (outcome.decision != GateDecision::kBadMessage) return;
-    report_bad(image->header.stamp.toSec(),
-               outcome.error.empty() ? "undecodable frame" : outcome.error);
-  };
-  FrameSynchronizer sync(params.sync_queue_size, params.sync_slop_s, on_frame);
-  // Every clusters message, kept frame or not, is a scan the people's motion is measured from
-  // (issue 21). One that cannot be decoded is reported when its frame is.
-  const auto observe = [&](const sensor_msgs::PointCloud2& clusters, const std::string& topic) {
-    if (!builder.tracksMotion()) return;
-    try {
-      builder.observeScan(decodeScanPeople(clusters, topic, time_field));
-    } catch (const std::invalid_argument&) {
-    }
-  };
-
-  // Messages whose stamps ApproximateTime cannot handle are refused by the synchronizer: say so
-  // for the first few.
-  std::uint64_t stamp_faults = 0;
-  const auto note = [&](const std::string& topic, const FrameSynchronizer::AddOutcome& outcome) {
-    if (outcome.fault.empty() || ++stamp_faults > kMaxDistinctWarnings || !callbacks.warn) return;
-    callbacks.warn(topic + ": " + outcome.fault +
-                   (stamp_faults == kMaxDistinctWarnings ? " (further ones not shown)" : ""));
-  };
-
-  std::vector<std::string> wanted = {topics.image, topics.mask, topics.clusters};
-  if (topics.detect) wanted = {topics.image, topics.points};
-  // --detect: the detectors make each raw message into what a mask / clusters topic would carry;
-  // a message they cannot read is a bad frame like any other.
-  const auto add_detected = [&](const rosbag::MessageInstance& m) {
-    try {
-      if (m.getTopic() == topics.points) {
-        const auto cloud = m.instantiate<sensor_msgs::PointCloud2>();
-        if (!cloud) return;
-        const sensor_msgs::PointCloud2::ConstPtr clusters = detectors->detect(*cloud, m.getTopic()).clusters;
-        if (clusters) observe(*clusters, topics.clusters);
-        note(m.getTopic(), sync.addClusters(clusters));
-      } else {
-        const auto image = m.instantiate<sensor_msgs::Image>();
-        if (!image) return;
-        const SegmentedImage seg = detectors->segment(image, m.getTopic());
-        note(m.getTopic(), sync.addImage(seg.image));
-        note(topics.mask, sync.addMask(seg.mask));
-      }
-    } catch (const std::invalid_argument& e) {
-      report_bad(m.getTime().toSec(), e.what());
-    }
-  };
-  try {
-    rosbag::View view(bag, rosbag::TopicQuery(wanted));
-    stats.messages_total = view.size();
-    for (auto it = view.begin(); it != view.end(); ++it) {
-      const rosbag::MessageInstance& m = *it;
-      ++stats.messages_read;
-      try {
-        if (topics.detect) {
-          add_detected(m);
-        } else if (m.getTopic() == topics.clusters) {
-          const auto clusters = m.instantiate<sensor_msgs::PointCloud2>();
-          if (clusters) observe(*clusters, m.getTopic());
-          note(m.getTopic(), sync.addClusters(clusters));
-        } else if (m.getTopic() == topics.image) {
-          note(m.getTopic(), sync.addImage(m.instantiate<sensor_msgs::Image>()));
-        } else {
-          note(m.getTopic(), sync.addMask(m.instantiate<sensor_msgs::Image>()));
-        }
-      } catch (const ros::Exception& e) {
-        // One message could not be deserialised (truncated record): skip it.
-        ++stats.undecodable_messages;
-        if (stats.undecodable_messages == 1 && callbacks.warn) {
-          callbacks.warn("cannot deserialise a message on " + m.getTopic() + " (" + e.what() +
-                         "); skipping such messages");
-        }
-      }
-      if (callbacks.progress && !callbacks.progress(stats, builder)) {
-        stats.interrupted = true;
-        break;
-      }
-    }
-  } catch (const std::exception& e) {
-    stats.damage = "the bag could not be read past message " +
-                   std::to_string(stats.messages_read) + " (" + e.what() + ")";
-  }
-  if (!stats.interrupted) {
-    sync.flush();  // the last frame of the bag counts too
-    builder.flushPending();  // and the pairs waiting for scans that will not come
-  }
-  return stats;
+  return BagReader(topics, params, builder, callbacks, detectors).read(bag);
 }
 
 }  // namespace ros_io
