@@ -11,6 +11,11 @@
 #include <sstream>
 #include <string>
 
+// The CLI test targets get the built tools' paths from CMake (test/CMakeLists.txt).
+#if !defined(CALIBRATE_BAG_EXE) || !defined(MAKE_SYNTHETIC_BAG_EXE)
+#error "CALIBRATE_BAG_EXE and MAKE_SYNTHETIC_BAG_EXE must name the calibrate_bag and make_synthetic_bag binaries"
+#endif
+
 namespace tlc_cli_test {
 
 struct RunResult {

@@ -14,12 +14,6 @@
 #include <iterator>
 #include <string>
 
-#ifndef CALIBRATE_BAG_EXE
-#error "CALIBRATE_BAG_EXE must be defined to the calibrate_bag binary"
-#endif
-#ifndef MAKE_SYNTHETIC_BAG_EXE
-#error "MAKE_SYNTHETIC_BAG_EXE must be defined to the make_synthetic_bag binary"
-#endif
 
 namespace {
 
