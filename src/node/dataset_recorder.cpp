@@ -87,8 +87,10 @@ std::string DatasetRecorder::describeOnDisk(std::size_t pairs_kept) const {
   }
   try {
     const std::size_t on_disk = countDatasetBagPairs(path_);
+    const std::size_t candidates = countDatasetBagCandidates(path_);
     return "the dataset bag " + path_ + " holds " + std::to_string(on_disk) + " of the " +
-           std::to_string(pairs_kept) + " kept pairs" + stopped;
+           std::to_string(pairs_kept) + " kept pairs" +
+           (candidates > 0 ? " and " + std::to_string(candidates) + " association candidates" : "") + stopped;
   } catch (const std::exception& e) {
     return "the dataset bag cannot be read back: " + std::string(e.what()) + stopped;
   }

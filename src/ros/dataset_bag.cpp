@@ -167,14 +167,24 @@ DatasetBagContents readDatasetBag(const std::string& path, bool recover) {
   return contents;
 }
 
-std::size_t countDatasetBagPairs(const std::string& path) {
+namespace {
+
+std::size_t countMarkers(const std::string& path, const char* topic) {
   rosbag::Bag bag;
   try {
     bag.open(path, rosbag::bagmode::Read);  // reads the index only
-    return rosbag::View(bag, rosbag::TopicQuery(DatasetBagTopics::kMarker)).size();
+    return rosbag::View(bag, rosbag::TopicQuery(topic)).size();
   } catch (const rosbag::BagException& e) {
     fail(path, e.what());
   }
+}
+
+}  // namespace
+
+std::size_t countDatasetBagPairs(const std::string& path) { return countMarkers(path, DatasetBagTopics::kMarker); }
+
+std::size_t countDatasetBagCandidates(const std::string& path) {
+  return countMarkers(path, DatasetBagTopics::kCandidateMarker);
 }
 
 RestoredDataset restoreDataset(DatasetBagContents contents, DatasetBuilder& builder) {

@@ -27,6 +27,7 @@
 #include <atomic>
 #include <cmath>
 #include <functional>
+#include <iostream>
 #include <map>
 #include <mutex>
 #include <string>
@@ -351,13 +352,16 @@ TEST(NodeDiskFull, SaveAndResetAnswerOnlyWhatTheyChecked) {
     std::lock_guard<std::mutex> lock(g_observed.mutex);
     status = g_observed.last_status;
   }
-  std::size_t on_disk = 0;
+  std::size_t on_disk = 0, candidates = 0;
   {
     rosbag::Bag reader(bag, rosbag::bagmode::Read);
     on_disk = rosbag::View(reader, rosbag::TopicQuery("/thermal_lidar_calibration/dataset_pair")).size();
+    candidates = rosbag::View(reader, rosbag::TopicQuery("/thermal_lidar_calibration/dataset_candidate")).size();
   }
   const std::string holds = "holds " + std::to_string(on_disk) + " of the " +
-                            std::to_string(status.pairs_kept) + " kept pairs";
+                            std::to_string(status.pairs_kept) + " kept pairs" +
+                            (candidates > 0 ? " and " + std::to_string(candidates) + " association candidates" : "");
+  std::cerr << "the bag holds " << on_disk << " pairs and " << candidates << " association candidates\n";
 
   std_srvs::Trigger::Response r = callTrigger("calibration_node/save");
   EXPECT_TRUE(r.success) << r.message;

@@ -24,6 +24,7 @@ import tf2_ros
 import yaml
 from geometry_msgs.msg import TransformStamped
 from std_msgs.msg import UInt32
+from std_srvs.srv import Trigger
 from thermal_lidar_calibration.msg import CalibrationStatus
 
 from package_executables import executable
@@ -205,6 +206,12 @@ class KillAndResume(unittest.TestCase):
         # Candidates from before the kill were paired by association in the resumed fit.
         early = [p for p in result["pairs"] if p["rule"] == "association" and p["stamp"] <= killed_at + 1e-6]
         self.assertGreater(len(early), 0, "no association pair from the candidates stored before the kill")
+        # ~save's account of the bag counts both, from the file.
+        _, candidates_now, _ = stored_frames(self.dataset_bag)
+        rospy.wait_for_service(NODE + "/save", timeout=HANG_GUARD_S)
+        saved = rospy.ServiceProxy(NODE + "/save", Trigger)()
+        self.assertTrue(saved.success, saved.message)
+        self.assertIn("and %d association candidates" % candidates_now, saved.message)
         # calibrate_bag on the dataset bag reads it as ~resume does: the node's result again, its
         # association pairs included.
         again = os.path.join(self.work, "calibrate_bag.yaml")

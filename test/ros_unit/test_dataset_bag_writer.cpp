@@ -254,6 +254,7 @@ TEST(DatasetBagWriter, StoresAssociationCandidatesWithTheirKindAndPlace) {
   EXPECT_EQ(contents.kinds[1].frame_index, 12u);
   EXPECT_EQ(contents.kinds[2].frame_index, 17u);
   EXPECT_EQ(tlc::ros_io::countDatasetBagPairs(path), 2u);
+  EXPECT_EQ(tlc::ros_io::countDatasetBagCandidates(path), 1u);
 
   const tlc::StoredFrameKind old_pair = tlc::ros_io::parseDatasetMarker("pair kept by calibration_node (already gated)");
   EXPECT_FALSE(old_pair.candidate);

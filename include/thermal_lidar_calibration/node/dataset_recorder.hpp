@@ -40,7 +40,8 @@ class DatasetRecorder {
   const std::string& stopReason() const { return stop_reason_; }
 
   // For ~save: what the bag on disk holds, read back from the file (not the writer's count), in
-  // words: "the dataset bag <path> holds 12 of the 15 kept pairs (recording stopped: ...)", or
+  // words: "the dataset bag <path> holds 12 of the 15 kept pairs [and 4 association candidates]
+  // (recording stopped: ...)", or
   // that there is no bag on disk, or that it cannot be read. "" when not recording.
   std::string describeOnDisk(std::size_t pairs_kept) const;
 

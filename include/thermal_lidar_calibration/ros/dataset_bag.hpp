@@ -99,6 +99,8 @@ DatasetBagContents readDatasetBag(const std::string& path, bool recover = true);
 // from its index (one marker message per pair), for answers that must be true rather than what
 // the writer believes. Throws std::runtime_error naming the bag when it cannot be read.
 std::size_t countDatasetBagPairs(const std::string& path);
+// The same for the frames held as association candidates.
+std::size_t countDatasetBagCandidates(const std::string& path);
 
 // The stored frames into `builder` (DatasetBuilder::restore, in the order they were stored):
 // the one way ~resume and calibrate_bag read a dataset bag back.
