@@ -145,6 +145,7 @@ OfferOutcome DatasetBuilder::admit(const std::function<Frame()>& decode, bool st
   pair.cloud_stamp_s = frame.cloud_stamp_s;
   pair.point_time_s = std::move(frame.point_time_s);
   pair.point_velocity = std::move(frame.point_velocity);
+  if (!pair.point_velocity.empty()) pair.motion = std::move(frame.motion);
   if (motion_ && pair.point_velocity.empty()) {
     pending_.push_back(std::move(pair));
     finishPending(false);

@@ -96,11 +96,18 @@ DecodedClusters decodeClusters(const sensor_msgs::PointCloud2& msg, const std::s
   if (moving) {
     for (const sensor_msgs::PointField* f : velocity) cloud_fields::checkFieldFits(msg, *f, topic);
   }
+  const sensor_msgs::PointField* velocity_se[2] = {cloud_fields::findField(msg, kVelocityErrorFields[0]),
+                                                    cloud_fields::findField(msg, kVelocityErrorFields[1])};
+  const bool with_errors = moving && velocity_se[0] && velocity_se[1];
+  if (with_errors) {
+    for (const sensor_msgs::PointField* f : velocity_se) cloud_fields::checkFieldFits(msg, *f, topic);
+  }
   DecodedClusters out;
   out.points.reserve(layout.points);  // bounded: the data holds every point (checked)
   out.labels.reserve(layout.points);
   if (times) out.point_time_s.reserve(layout.points);
   if (moving) out.point_velocity.reserve(layout.points);
+  if (with_errors) out.point_velocity_se.reserve(layout.points);
   for (std::size_t i = 0; i < layout.points; ++i) {
     const std::uint8_t* p = pointAt(msg, i);
     const double x = readScalar(p + layout.axes[0]->offset, layout.axes[0]->datatype);
@@ -132,6 +139,13 @@ DecodedClusters decodeClusters(const sensor_msgs::PointCloud2& msg, const std::s
       Eigen::Vector3f v;
       for (int k = 0; k < 3; ++k) v[k] = static_cast<float>(readScalar(p + velocity[k]->offset, velocity[k]->datatype));
       out.point_velocity.push_back(v.allFinite() ? v : Eigen::Vector3f::Zero());  // not finite: not measured
+    }
+    if (with_errors) {
+      Eigen::Vector2f se;
+      for (int k = 0; k < 2; ++k) {
+        se[k] = static_cast<float>(readScalar(p + velocity_se[k]->offset, velocity_se[k]->datatype));
+      }
+      out.point_velocity_se.push_back(se);
     }
   }
   return out;
@@ -222,6 +236,7 @@ Frame decodeFrame(const sensor_msgs::Image& image, const sensor_msgs::Image& mas
   frame.points = std::move(decoded.points);
   frame.labels = std::move(decoded.labels);
   frame.point_time_s = std::move(decoded.point_time_s);
+  frame.motion = motionFromFields(frame.labels, decoded.point_velocity, decoded.point_velocity_se);
   frame.point_velocity = std::move(decoded.point_velocity);
   frame.cloud_stamp_s = clusters.header.stamp.toSec();
   frame.nonfinite_points_dropped = decoded.nonfinite_dropped;

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 
 namespace thermal_lidar_calibration {
@@ -14,8 +15,11 @@ sensor_msgs::PointCloud2 withVelocityFields(const sensor_msgs::PointCloud2& clus
                                             const std::vector<PersonMotion>& motion, const std::string& topic) {
   const cloud_fields::CloudLayout layout = cloud_fields::checkCloudLayout(clusters, topic, /*need_label=*/true);
   std::map<std::int32_t, Eigen::Vector3f> by_label;
+  std::map<std::int32_t, Eigen::Vector2f> se_by_label;
   for (const PersonMotion& m : motion) {
-    if (m.measured()) by_label[m.label] = deskewVelocity(m).cast<float>();
+    if (!m.measured()) continue;
+    by_label[m.label] = deskewVelocity(m).cast<float>();
+    se_by_label[m.label] = deskewVelocityStdError(m).head<2>().cast<float>();
   }
   // The same points, dense, with the old fields (less any old velocity) followed by vx, vy, vz.
   sensor_msgs::PointCloud2 out;
@@ -27,7 +31,10 @@ sensor_msgs::PointCloud2 withVelocityFields(const sensor_msgs::PointCloud2& clus
   std::vector<const sensor_msgs::PointField*> kept;
   std::uint32_t step = 0;
   for (const sensor_msgs::PointField& f : clusters.fields) {
-    if (f.name == kVelocityFields[0] || f.name == kVelocityFields[1] || f.name == kVelocityFields[2]) continue;
+    if (f.name == kVelocityFields[0] || f.name == kVelocityFields[1] || f.name == kVelocityFields[2] ||
+        f.name == kVelocityErrorFields[0] || f.name == kVelocityErrorFields[1]) {
+      continue;
+    }
     cloud_fields::checkFieldFits(clusters, f, topic);
     const std::size_t bytes = cloud_fields::datatypeSize(f.datatype) * std::max<std::uint32_t>(1, f.count);
     if (f.offset + bytes > clusters.point_step) {
@@ -41,9 +48,9 @@ sensor_msgs::PointCloud2 withVelocityFields(const sensor_msgs::PointCloud2& clus
     kept.push_back(&f);
   }
   const std::uint32_t velocity_offset = step;
-  for (int k = 0; k < 3; ++k) {
+  for (int k = 0; k < 5; ++k) {
     sensor_msgs::PointField v;
-    v.name = kVelocityFields[k];
+    v.name = k < 3 ? kVelocityFields[k] : kVelocityErrorFields[k - 3];
     v.offset = step;
     v.datatype = sensor_msgs::PointField::FLOAT32;
     v.count = 1;
@@ -62,12 +69,36 @@ sensor_msgs::PointCloud2 withVelocityFields(const sensor_msgs::PointCloud2& clus
     }
     const double label = cloud_fields::readScalar(from + layout.label->offset, layout.label->datatype);
     Eigen::Vector3f v = Eigen::Vector3f::Zero();
+    Eigen::Vector2f se = Eigen::Vector2f::Constant(std::numeric_limits<float>::quiet_NaN());
     if (std::isfinite(label)) {
       const auto it = by_label.find(static_cast<std::int32_t>(label));
-      if (it != by_label.end()) v = it->second;
+      if (it != by_label.end()) {
+        v = it->second;
+        se = se_by_label[it->first];
+      }
     }
     std::memcpy(to + velocity_offset, v.data(), 3 * sizeof(float));
+    std::memcpy(to + velocity_offset + 3 * sizeof(float), se.data(), 2 * sizeof(float));
   }
+  return out;
+}
+
+std::vector<PersonMotion> motionFromFields(const std::vector<std::int32_t>& labels,
+                                           const std::vector<Eigen::Vector3f>& velocity,
+                                           const std::vector<Eigen::Vector2f>& velocity_se) {
+  std::map<std::int32_t, PersonMotion> by_label;
+  if (velocity.size() != labels.size() || velocity_se.size() != labels.size()) return {};
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    if (std::isnan(velocity_se[i].x()) || std::isnan(velocity_se[i].y()) || by_label.count(labels[i]) != 0) continue;
+    PersonMotion m;
+    m.label = labels[i];
+    m.velocity_mps = velocity[i].cast<double>();
+    m.std_error_mps = Eigen::Vector3d(velocity_se[i].x(), velocity_se[i].y(), 0.0);
+    m.scans = 2;
+    by_label[m.label] = m;
+  }
+  std::vector<PersonMotion> out;
+  for (const auto& [label, m] : by_label) out.push_back(m);
   return out;
 }
 

@@ -227,6 +227,7 @@ TEST(PointTimes, VelocityFieldsRoundTripThroughTheDatasetBagsClusters) {
   tlc::PersonMotion walker;
   walker.label = 1;
   walker.velocity_mps = Eigen::Vector3d(-2.0, 0.5, 0.0);
+  walker.std_error_mps = Eigen::Vector3d(0.125, 0.25, 0.5);
   walker.scans = 5;
   tlc::PersonMotion unmeasured;
   unmeasured.label = 2;
@@ -243,7 +244,30 @@ TEST(PointTimes, VelocityFieldsRoundTripThroughTheDatasetBagsClusters) {
     EXPECT_EQ(d.point_velocity[0], Eigen::Vector3f(-2.0f, 0.5f, 0.0f));
     EXPECT_EQ(d.point_velocity[1], Eigen::Vector3f(-2.0f, 0.5f, 0.0f));
     EXPECT_EQ(d.point_velocity[2], Eigen::Vector3f::Zero());
+    // The velocities' standard errors too (the deskew velocity's: none along z), so a dataset
+    // read back judges the timing as the session that kept it (motionFromFields).
+    ASSERT_EQ(d.point_velocity_se.size(), 3u);
+    EXPECT_EQ(d.point_velocity_se[0], Eigen::Vector2f(0.125f, 0.25f));
+    EXPECT_TRUE(std::isnan(d.point_velocity_se[2].x()));
+    const std::vector<tlc::PersonMotion> motion =
+        tlc::ros_io::motionFromFields(d.labels, d.point_velocity, d.point_velocity_se);
+    ASSERT_EQ(motion.size(), 1u);
+    EXPECT_EQ(motion[0].label, 1);
+    EXPECT_TRUE(motion[0].measured());
+    EXPECT_EQ(motion[0].velocity_mps, Eigen::Vector3d(-2.0, 0.5, 0.0));
+    EXPECT_EQ(motion[0].std_error_mps, Eigen::Vector3d(0.125, 0.25, 0.0));
   }
+  // A dataset bag from before the error fields: velocities without errors, no motion made up.
+  sensor_msgs::PointCloud2 old_bag = tlc::ros_io::withVelocityFields(velodyneClusters(), {walker}, "/clusters");
+  for (auto& f : old_bag.fields) {
+    if (f.name == "vx_se" || f.name == "vy_se") f.name = "unused_" + f.name;
+  }
+  const auto old_decoded = decodeClusters(old_bag, "/clusters", named("time"));
+  EXPECT_EQ(old_decoded.point_velocity.size(), 3u);
+  EXPECT_TRUE(old_decoded.point_velocity_se.empty());
+  EXPECT_TRUE(tlc::ros_io::motionFromFields(old_decoded.labels, old_decoded.point_velocity,
+                                            old_decoded.point_velocity_se)
+                  .empty());
   // A cloud without them has no velocities (not zeros that would read as standing still).
   EXPECT_TRUE(decodeClusters(velodyneClusters(), "/clusters").point_velocity.empty());
 }

@@ -27,6 +27,7 @@ struct Frame {
   // Per point, relative to the LiDAR (m/s), when the source already measured it (a dataset bag
   // written by the node); empty otherwise.
   std::vector<Eigen::Vector3f> point_velocity;
+  std::vector<PersonMotion> motion;  // and its people's motion, when the source says it
 };
 
 // Which rule made a pair (issue 23): the paper's equal counts, or person-by-person association

@@ -27,6 +27,8 @@ struct DecodedClusters {
   // Per point, m/s relative to the LiDAR, when the cloud has the velocity fields a dataset bag
   // writes (velocity_fields.hpp); empty otherwise.
   std::vector<Eigen::Vector3f> point_velocity;
+  // Per point, the standard errors of vx and vy (NaN: not measured), when the cloud has them too.
+  std::vector<Eigen::Vector2f> point_velocity_se;
   std::size_t nonfinite_dropped = 0;    // points with a NaN/inf coordinate, label or time
 };
 // float32 x, y, z plus an integer (any int/uint width) or float `label` field, and the per-point
