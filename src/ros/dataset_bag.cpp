@@ -10,6 +10,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -190,7 +191,21 @@ std::size_t countDatasetBagCandidates(const std::string& path) {
 RestoredDataset restoreDataset(DatasetBagContents contents, DatasetBuilder& builder) {
   RestoredDataset restored;
   restored.skipped = std::move(contents.errors);
-  for (std::size_t i = 0; i < contents.frames.size(); ++i) {
+  // rosbag reads in stamp order; the session kept its frames in the order they were offered,
+  // which a resumed session replaying a drive from its start breaks (its new frames come after
+  // the stored ones). The frame numbers give that order back, and with it the pairs' order the
+  // session fitted (the bootstrap resamples blocks of consecutive pairs).
+  std::vector<std::size_t> order(contents.frames.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  const bool numbered = contents.kinds.size() == contents.frames.size() &&
+                        std::all_of(contents.kinds.begin(), contents.kinds.end(),
+                                    [](const StoredFrameKind& k) { return k.frame_index.has_value(); });
+  if (numbered) {
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return *contents.kinds[a].frame_index < *contents.kinds[b].frame_index;
+    });
+  }
+  for (const std::size_t i : order) {
     const StoredFrameKind kind = i < contents.kinds.size() ? contents.kinds[i] : StoredFrameKind{};
     const OfferOutcome outcome = builder.restore(std::move(contents.frames[i]), kind);
     if (outcome.decision == GateDecision::kKept) {
