@@ -51,16 +51,6 @@ std::vector<BagAppender::Message> pairMessages(const sensor_msgs::Image& image,
                                time, marker)};
 }
 
-// Marker text by exact image stamp.
-std::map<std::uint64_t, std::string> readMarkers(rosbag::Bag& bag) {
-  std::map<std::uint64_t, std::string> markers;
-  const std::vector<std::string> topics = {DatasetBagTopics::kMarker, DatasetBagTopics::kCandidateMarker};
-  for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery(topics))) {
-    if (const auto text = m.instantiate<std_msgs::String>()) markers[m.getTime().toNSec()] = text->data;
-  }
-  return markers;
-}
-
 }  // namespace
 
 std::string datasetMarkerText(const StoredFrameKind& kind) {
@@ -124,15 +114,22 @@ DatasetBagContents readDatasetBag(const std::string& path, bool recover) {
   } catch (const rosbag::BagException& e) {
     fail(path, e.what());
   }
-  const std::map<std::uint64_t, std::string> markers = readMarkers(bag);
-  const std::vector<std::string> topics = {DatasetBagTopics::kImage, DatasetBagTopics::kMask,
-                                           DatasetBagTopics::kClusters,
-                                           DatasetBagTopics::kCameraInfo};
+  const std::vector<std::string> topics = {DatasetBagTopics::kImage,      DatasetBagTopics::kMask,
+                                           DatasetBagTopics::kClusters,   DatasetBagTopics::kCameraInfo,
+                                           DatasetBagTopics::kMarker,     DatasetBagTopics::kCandidateMarker};
   rosbag::View view(bag, rosbag::TopicQuery(topics));
   sensor_msgs::Image::ConstPtr image, mask;
   sensor_msgs::PointCloud2::ConstPtr clusters;
+  // A frame's marker shares its time (pairMessages) but may come before or after its other
+  // messages: matched by time once all are read.
+  std::map<std::uint64_t, std::string> markers;
+  std::vector<std::uint64_t> frame_times_ns;
   for (const rosbag::MessageInstance& m : view) {
     const std::string& topic = m.getTopic();
+    if (topic == DatasetBagTopics::kMarker || topic == DatasetBagTopics::kCandidateMarker) {
+      if (const auto text = m.instantiate<std_msgs::String>()) markers[m.getTime().toNSec()] = text->data;
+      continue;
+    }
     if (topic == DatasetBagTopics::kImage) {
       image = m.instantiate<sensor_msgs::Image>();
     } else if (topic == DatasetBagTopics::kMask) {
@@ -155,15 +152,17 @@ DatasetBagContents readDatasetBag(const std::string& path, bool recover) {
       contents.frames.push_back(std::move(frame));
       contents.pair_stamps_ns.push_back(image->header.stamp.toNSec());
       // The chunk's messages are stamped with the image's time (pairMessages), clamped as there.
-      const ros::Time time = image->header.stamp < ros::TIME_MIN ? ros::TIME_MIN : image->header.stamp;
-      const auto marker = markers.find(time.toNSec());
-      contents.kinds.push_back(marker == markers.end() ? StoredFrameKind{} : parseDatasetMarker(marker->second));
+      frame_times_ns.push_back((image->header.stamp < ros::TIME_MIN ? ros::TIME_MIN : image->header.stamp).toNSec());
     } catch (const std::invalid_argument& e) {
       contents.errors.push_back(e.what());
     }
     image.reset();
     mask.reset();
     clusters.reset();
+  }
+  for (const std::uint64_t t : frame_times_ns) {
+    const auto marker = markers.find(t);
+    contents.kinds.push_back(marker == markers.end() ? StoredFrameKind{} : parseDatasetMarker(marker->second));
   }
   return contents;
 }
