@@ -42,6 +42,11 @@ void CalibrationNode::resumeDataset() {
   for (const std::uint64_t ns : restored.stamps_ns) stored_stamps_ns_.insert(static_cast<long long>(ns));
   pairs_resumed_ = builder_->pairs().size();
   finished_pairs_ = pairs_resumed_;  // already in the bag
+  std::vector<StoredPairStamp> stored;
+  for (const CalibrationPair& pair : builder_->pairs()) {
+    stored.push_back({pair.stamp_s, restored.numbered ? std::optional<std::uint64_t>(pair.candidate_index) : std::nullopt});
+  }
+  stored_spacing_.emplace(std::move(stored), params_.core.gate.skip_frames);
   if (!builder_->candidates().empty()) last_candidate_recorded_ = builder_->candidates().back().candidate_index;
   camera_frame_ = camera_frame;
   lidar_frame_ = lidar_frame;
@@ -252,6 +257,10 @@ void CalibrationNode::onFrame(const sensor_msgs::Image::ConstPtr& image,
   }
   if (stored_stamps_ns_.count(static_cast<long long>(image->header.stamp.toNSec())) != 0) {
     ROS_DEBUG("frame %.3f is already in the dataset", image->header.stamp.toSec());
+    return;
+  }
+  if (stored_spacing_ && stored_spacing_->tooClose(image->header.stamp.toSec())) {
+    ROS_DEBUG("frame %.3f is within the skip rule of a resumed pair", image->header.stamp.toSec());
     return;
   }
   const std::uint64_t nonfinite_before = builder_->counts().nonfinite_points_dropped;

@@ -23,6 +23,7 @@ bool CalibrationNode::onReset(std_srvs::Trigger::Request& /*req*/, std_srvs::Tri
   }
   if (builder_) builder_->reset();
   stored_stamps_ns_.clear();
+  stored_spacing_.reset();
   kept_messages_.clear();
   candidate_messages_.clear();
   last_candidate_recorded_.reset();

@@ -199,6 +199,7 @@ RestoredDataset restoreDataset(DatasetBagContents contents, DatasetBuilder& buil
   const bool numbered = contents.kinds.size() == contents.frames.size() &&
                         std::all_of(contents.kinds.begin(), contents.kinds.end(),
                                     [](const StoredFrameKind& k) { return k.frame_index.has_value(); });
+  restored.numbered = numbered && !order.empty();
   if (numbered) {
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
       return *contents.kinds[a].frame_index < *contents.kinds[b].frame_index;

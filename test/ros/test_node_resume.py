@@ -202,6 +202,11 @@ class KillAndResume(unittest.TestCase):
         self.assertEqual(result["pairs_by_rule"]["counts"], required)
         stamps = [p["stamp"] for p in result["pairs"]]
         self.assertEqual(len(stamps), len(set(stamps)), "a pair was added twice")
+        # The replay from the start offers the frames the first run skipped again: none becomes a
+        # pair next to a stored one (the skip rule keeps pairs 4 frames, 0.4 s, apart).
+        counts = sorted(p["stamp"] for p in result["pairs"] if p["rule"] == "counts")
+        gaps = [b - a for a, b in zip(counts, counts[1:])]
+        self.assertGreater(min(gaps), 0.35, "pairs closer than the skip rule keeps them")
         self.assertEqual(self.statuses.last.pairs_resumed, resumed)
         # Candidates from before the kill were paired by association in the resumed fit.
         early = [p for p in result["pairs"] if p["rule"] == "association" and p["stamp"] <= killed_at + 1e-6]

@@ -7,6 +7,7 @@
 
 #include "thermal_lidar_calibration/core/calibrator.hpp"
 #include "thermal_lidar_calibration/core/dataset_builder.hpp"
+#include "thermal_lidar_calibration/core/stored_pair_spacing.hpp"
 #include "thermal_lidar_calibration/ros/calibrated_tf_publisher.hpp"
 #include "thermal_lidar_calibration/node/calibration_worker.hpp"
 #include "thermal_lidar_calibration/node/drift_update_file.hpp"
@@ -153,6 +154,9 @@ class CalibrationNode {
   std::unique_ptr<DatasetRecorder> recorder_;  // ~dataset_bag (a failed write stops recording)
   std::unique_ptr<NodeDiagnostics> diagnostics_;  // /diagnostics; parts add their tasks
   std::set<long long> stored_stamps_ns_;  // image stamps of pairs in the dataset (no duplicates)
+  // ~resume: live frames within the skip rule of a stored pair are passed over (a drive played
+  // again from its start), when the stored pairs' frame numbers give the frame period.
+  std::optional<StoredPairSpacing> stored_spacing_;
   // The messages of kept pairs not yet finished (waiting for their later scans), oldest first:
   // recorded to the dataset bag with the motion when the pair is finished.
   struct KeptMessages {

@@ -109,6 +109,7 @@ struct RestoredDataset {
   std::size_t candidates = 0;  // held as association candidates (before the builder's bound)
   std::vector<std::uint64_t> stamps_ns;  // the exact image stamps of the frames restored
   std::vector<std::string> skipped;      // why a stored frame was not restored, one line each
+  bool numbered = false;  // every stored frame carried its frame number (their order and place)
 };
 RestoredDataset restoreDataset(DatasetBagContents contents, DatasetBuilder& builder);
 
