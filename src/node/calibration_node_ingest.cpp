@@ -50,11 +50,9 @@ void CalibrationNode::resumeDataset() {
   if (!builder_->candidates().empty()) last_candidate_recorded_ = builder_->candidates().back().candidate_index;
   camera_frame_ = camera_frame;
   lidar_frame_ = lidar_frame;
-  ROS_INFO("~resume: reloaded %zu pairs%s from %s", pairs_resumed_,
-           restored.candidates > 0
-               ? (" and " + std::to_string(builder_->candidates().size()) + " association candidates").c_str()
-               : "",
-           params_.dataset_bag.c_str());
+  const std::string candidates =
+      builder_->candidates().empty() ? "" : " and " + std::to_string(builder_->candidates().size()) + " association candidates";
+  ROS_INFO("~resume: reloaded %zu pairs%s from %s", pairs_resumed_, candidates.c_str(), params_.dataset_bag.c_str());
 }
 
 void CalibrationNode::onCameraInfo(const sensor_msgs::CameraInfo::ConstPtr& msg) {

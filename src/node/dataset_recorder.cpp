@@ -50,7 +50,7 @@ bool DatasetRecorder::record(const sensor_msgs::Image& image, const sensor_msgs:
   }
   try {
     writer_->write(image, mask, clusters, info, kind);
-    ++(kind.candidate ? candidates_recorded_ : pairs_in_bag_);
+    if (!kind.candidate) ++pairs_in_bag_;
     return true;
   } catch (const std::exception& e) {
     if (!kind.candidate) ++pairs_not_recorded_;
@@ -86,11 +86,11 @@ std::string DatasetRecorder::describeOnDisk(std::size_t pairs_kept) const {
     return "no dataset bag on disk (" + path_ + " is written with the next kept pair)" + stopped;
   }
   try {
-    const std::size_t on_disk = countDatasetBagPairs(path_);
-    const std::size_t candidates = countDatasetBagCandidates(path_);
-    return "the dataset bag " + path_ + " holds " + std::to_string(on_disk) + " of the " +
+    const DatasetBagCounts on_disk = countDatasetBag(path_);
+    return "the dataset bag " + path_ + " holds " + std::to_string(on_disk.pairs) + " of the " +
            std::to_string(pairs_kept) + " kept pairs" +
-           (candidates > 0 ? " and " + std::to_string(candidates) + " association candidates" : "") + stopped;
+           (on_disk.candidates > 0 ? " and " + std::to_string(on_disk.candidates) + " association candidates" : "") +
+           stopped;
   } catch (const std::exception& e) {
     return "the dataset bag cannot be read back: " + std::string(e.what()) + stopped;
   }

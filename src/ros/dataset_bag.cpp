@@ -167,25 +167,22 @@ DatasetBagContents readDatasetBag(const std::string& path, bool recover) {
   return contents;
 }
 
-namespace {
-
-std::size_t countMarkers(const std::string& path, const char* topic) {
+DatasetBagCounts countDatasetBag(const std::string& path) {
   rosbag::Bag bag;
   try {
     bag.open(path, rosbag::bagmode::Read);  // reads the index only
-    return rosbag::View(bag, rosbag::TopicQuery(topic)).size();
+    DatasetBagCounts counts;
+    counts.pairs = rosbag::View(bag, rosbag::TopicQuery(DatasetBagTopics::kMarker)).size();
+    counts.candidates = rosbag::View(bag, rosbag::TopicQuery(DatasetBagTopics::kCandidateMarker)).size();
+    return counts;
   } catch (const rosbag::BagException& e) {
     fail(path, e.what());
   }
 }
 
-}  // namespace
+std::size_t countDatasetBagPairs(const std::string& path) { return countDatasetBag(path).pairs; }
 
-std::size_t countDatasetBagPairs(const std::string& path) { return countMarkers(path, DatasetBagTopics::kMarker); }
-
-std::size_t countDatasetBagCandidates(const std::string& path) {
-  return countMarkers(path, DatasetBagTopics::kCandidateMarker);
-}
+std::size_t countDatasetBagCandidates(const std::string& path) { return countDatasetBag(path).candidates; }
 
 RestoredDataset restoreDataset(DatasetBagContents contents, DatasetBuilder& builder) {
   RestoredDataset restored;

@@ -3,6 +3,7 @@
 #include "cloud_fields.hpp"
 #include "thermal_lidar_calibration/core/person_timing.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -14,12 +15,13 @@ namespace ros_io {
 sensor_msgs::PointCloud2 withVelocityFields(const sensor_msgs::PointCloud2& clusters,
                                             const std::vector<PersonMotion>& motion, const std::string& topic) {
   const cloud_fields::CloudLayout layout = cloud_fields::checkCloudLayout(clusters, topic, /*need_label=*/true);
-  std::map<std::int32_t, Eigen::Vector3f> by_label;
-  std::map<std::int32_t, Eigen::Vector2f> se_by_label;
+  // Per measured person: vx, vy, vz, vx_se, vy_se, as the fields are laid out.
+  std::map<std::int32_t, std::array<float, 5>> by_label;
   for (const PersonMotion& m : motion) {
     if (!m.measured()) continue;
-    by_label[m.label] = deskewVelocity(m).cast<float>();
-    se_by_label[m.label] = deskewVelocityStdError(m).head<2>().cast<float>();
+    const Eigen::Vector3f v = deskewVelocity(m).cast<float>();
+    const Eigen::Vector3f se = deskewVelocityStdError(m).cast<float>();
+    by_label[m.label] = {v.x(), v.y(), v.z(), se.x(), se.y()};
   }
   // The same points, dense, with the old fields (less any old velocity) followed by vx, vy, vz.
   sensor_msgs::PointCloud2 out;
@@ -68,17 +70,13 @@ sensor_msgs::PointCloud2 withVelocityFields(const sensor_msgs::PointCloud2& clus
       std::memcpy(to + out.fields[f].offset, from + kept[f]->offset, bytes);
     }
     const double label = cloud_fields::readScalar(from + layout.label->offset, layout.label->datatype);
-    Eigen::Vector3f v = Eigen::Vector3f::Zero();
-    Eigen::Vector2f se = Eigen::Vector2f::Constant(std::numeric_limits<float>::quiet_NaN());
+    constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+    std::array<float, 5> values = {0.0f, 0.0f, 0.0f, kNaN, kNaN};  // not measured
     if (std::isfinite(label)) {
       const auto it = by_label.find(static_cast<std::int32_t>(label));
-      if (it != by_label.end()) {
-        v = it->second;
-        se = se_by_label[it->first];
-      }
+      if (it != by_label.end()) values = it->second;
     }
-    std::memcpy(to + velocity_offset, v.data(), 3 * sizeof(float));
-    std::memcpy(to + velocity_offset + 3 * sizeof(float), se.data(), 2 * sizeof(float));
+    std::memcpy(to + velocity_offset, values.data(), sizeof(values));
   }
   return out;
 }

@@ -34,7 +34,6 @@ class DatasetRecorder {
   bool recording() const { return enabled() && stop_reason_.empty(); }
   const std::string& path() const { return path_; }
   std::size_t pairsInBag() const { return pairs_in_bag_; }
-  std::size_t candidatesRecorded() const { return candidates_recorded_; }  // this session
   std::size_t pairsNotRecorded() const { return pairs_not_recorded_; }
   // "" while recording (or when off); else why recording stopped, with path and free space.
   const std::string& stopReason() const { return stop_reason_; }
@@ -52,7 +51,6 @@ class DatasetRecorder {
   std::unique_ptr<DatasetBagWriter> writer_;
   std::size_t pairs_in_bag_ = 0;
   std::size_t pairs_not_recorded_ = 0;  // kept since recording stopped (in memory only)
-  std::size_t candidates_recorded_ = 0;
   std::string stop_reason_;
 };
 

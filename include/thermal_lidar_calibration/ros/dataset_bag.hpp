@@ -101,6 +101,11 @@ DatasetBagContents readDatasetBag(const std::string& path, bool recover = true);
 std::size_t countDatasetBagPairs(const std::string& path);
 // The same for the frames held as association candidates.
 std::size_t countDatasetBagCandidates(const std::string& path);
+// Both from one reading of the index.
+struct DatasetBagCounts {
+  std::size_t pairs = 0, candidates = 0;
+};
+DatasetBagCounts countDatasetBag(const std::string& path);
 
 // The stored frames into `builder` (DatasetBuilder::restore, in the order they were stored):
 // the one way ~resume and calibrate_bag read a dataset bag back.
