@@ -350,7 +350,9 @@ LossEvaluator startResult(const CameraModel& camera, const std::vector<Calibrati
   result.pairs_with_motion = timing.pairs_with_motion;
   const std::optional<double> offset =
       timing.mode == TimeOffsetMode::kNone ? std::nullopt : std::optional<double>(timing.start_s);
-  return LossEvaluator(camera, pairs, LossConfig{config.behind_camera_penalty_c1, PixelRule::kNearest, offset});
+  LossConfig loss{config.behind_camera_penalty_c1, PixelRule::kNearest, offset};
+  loss.outline_px = config.refine.outline_px;  // read by the refinement's sub-pixel evaluators
+  return LossEvaluator(camera, pairs, loss);
 }
 
 }  // namespace

@@ -30,6 +30,14 @@ kernels::MapView viewOf(const std::shared_ptr<const DistanceMap>& map) {
           static_cast<float>(d.x0() + d.width() - 1), static_cast<float>(d.y0() + d.height() - 1)};
 }
 
+// What the kernels subtract from each point's reading: the margin, and for the sub-pixel rule at
+// least the distance from a person pixel's centre to its outline (LossConfig::outline_px).
+float marginOf(const LossConfig& config, PixelRule rule) {
+  const double margin =
+      rule == PixelRule::kBilinear ? std::max(config.margin_px, config.outline_px) : config.margin_px;
+  return static_cast<float>(margin);
+}
+
 kernels::Points pointsOf(const PreparedPair& p) {
   return {p.x.data(), p.y.data(), p.z.data(), static_cast<int>(p.count)};
 }
@@ -207,6 +215,13 @@ LossEvaluator LossEvaluator::withMargin(double margin_px) const {
   return LossEvaluator(camera_, config, impl_);
 }
 
+LossEvaluator LossEvaluator::withOutline(double outline_px) const {
+  LossConfig config = config_;
+  config.outline_px = outline_px;
+  config.validate();
+  return LossEvaluator(camera_, config, impl_);
+}
+
 std::size_t LossEvaluator::pairCount() const { return impl_->pairs.size(); }
 
 bool LossEvaluator::maskTouchesImageBorder(std::size_t pair) const {
@@ -233,7 +248,7 @@ Eigen::Vector3d LossEvaluator::centroid(const std::vector<std::size_t>& pairs) c
 double LossEvaluator::pairLoss(std::size_t pair, const Extrinsic& extrinsic) const {
   impl_->points += impl_->pairs.at(pair).count;
   return impl_->pairLoss(impl_->paramsOf(extrinsic), pair, config_.pixel_rule,
-                         static_cast<float>(config_.margin_px));
+                         marginOf(config_, config_.pixel_rule));
 }
 
 double LossEvaluator::loss(const Extrinsic& extrinsic, const std::vector<std::size_t>& subset) const {
@@ -269,7 +284,7 @@ void LossEvaluator::lossBatch(const std::vector<Extrinsic>& candidates,
   const int blocks = static_cast<int>((n + block - 1) / block);
   team = std::max(1, std::min(team, blocks));
   const PixelRule rule = config_.pixel_rule;
-  const float margin = static_cast<float>(config_.margin_px);
+  const float margin = marginOf(config_, rule);
   const double pair_count = static_cast<double>(pairs->size());
 #pragma omp parallel for schedule(dynamic, 1) num_threads(team)
   for (int b = 0; b < blocks; ++b) {

@@ -171,7 +171,13 @@ Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& esti
                                 const VerticalCentringOutcome* centring) {
   const auto started = std::chrono::steady_clock::now();
   requireUsableInput(loss, pairs, config, timing);
-  const LossEvaluator bilinear = loss.withPixelRule(PixelRule::kBilinear);
+  // The resamples are read with distances from the person pixels' centres (outline_px 0), not
+  // from their outline as the estimate was: read from the outline, a pose that fits every pair
+  // to within half a pixel costs nothing, a resample refined from there has no slope to follow
+  // and would end where it started, an interval of zero. The centres' rule has its minimum a
+  // little apart (the lean the outline takes out), so each resample's deviation is taken from
+  // that rule's fit on all the pairs, not from the estimate.
+  const LossEvaluator bilinear = loss.withPixelRule(PixelRule::kBilinear).withOutline(0.0);
   const RefineConfig refine = resampleRefineConfig(config);
   // One thread per resample: a resample's refinement evaluates 12 probes at a time, too few to
   // share well, while the resamples are independent.
@@ -185,6 +191,37 @@ Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& esti
     timed.emplace(bilinear, refine, steps, 1);
     offset_s = *loss.config().time_offset_s;
   }
+
+  struct Fit {
+    Extrinsic pose;
+    double offset_s = 0.0;
+    std::uint64_t evaluations = 0;
+  };
+  // The fit a resample gets: the refinement from the estimate, then the centring as calibrate()
+  // did it, with the points where the refinement left the offset.
+  const auto fit = [&](const std::vector<std::size_t>& set) {
+    Fit f;
+    f.offset_s = offset_s;
+    if (timed) {
+      const TimedRefineOutcome out = timed->run(estimate, offset_s, set);
+      f.pose = out.best;
+      f.offset_s = out.time_offset_s;
+      f.evaluations = out.evaluations;
+    } else {
+      const RefineOutcome out = refinement.run(estimate, set);
+      f.pose = out.best;
+      f.evaluations = out.evaluations;
+    }
+    if (centring) {
+      const VerticalCentringOutcome centred =
+          timed ? centreResample(bilinear.withTimeOffset(f.offset_s), f.pose, set, *centring, 1)
+                : centreResample(bilinear, f.pose, set, *centring, 1);
+      f.pose = centred.extrinsic;
+      f.evaluations += centred.evaluations;
+    }
+    return f;
+  };
+  const Fit reference = fit(pairs);
 
   const int total = config.resamples;
   std::vector<Vector6d> deviations(static_cast<std::size_t>(total));
@@ -200,28 +237,10 @@ Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& esti
     const std::size_t k = static_cast<std::size_t>(b);
     const std::vector<std::size_t> resample =
         resamplePairs(pairs, config.block_pairs, config.seed, b);
-    Extrinsic pose;
-    double resample_offset_s = offset_s;
-    if (timed) {
-      const TimedRefineOutcome out = timed->run(estimate, offset_s, resample);
-      pose = out.best;
-      resample_offset_s = out.time_offset_s;
-      offset_deviations[k] = 1000.0 * (out.time_offset_s - offset_s);
-      evaluations[k] = out.evaluations;
-    } else {
-      const RefineOutcome out = refinement.run(estimate, resample);
-      pose = out.best;
-      evaluations[k] = out.evaluations;
-    }
-    if (centring) {
-      // As calibrate() did: centred with the points where the refinement left the offset.
-      const VerticalCentringOutcome centred =
-          timed ? centreResample(bilinear.withTimeOffset(resample_offset_s), pose, resample, *centring, 1)
-                : centreResample(bilinear, pose, resample, *centring, 1);
-      pose = centred.extrinsic;
-      evaluations[k] += centred.evaluations;
-    }
-    deviations[k] = asVector(poseDifference(pose, estimate));
+    const Fit f = fit(resample);
+    offset_deviations[k] = 1000.0 * (f.offset_s - reference.offset_s);
+    evaluations[k] = f.evaluations;
+    deviations[k] = asVector(poseDifference(f.pose, reference.pose));
     done[k] = 1;
     const int n = ++finished;
     if (callback) {
@@ -236,6 +255,7 @@ Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& esti
   u.pairs = pairs.size();
   u.stopped = stop.load();
   u.timed = timing.has_value();
+  u.evaluations = reference.evaluations;
   for (int b = 0; b < total; ++b) {
     if (!done[static_cast<std::size_t>(b)]) continue;
     u.deviations.push_back(deviations[static_cast<std::size_t>(b)]);

@@ -61,10 +61,14 @@ TEST_F(CalibrateBagTimingCli, TheDefaultRunEstimatesTheOffsetWithTheExtrinsic) {
   EXPECT_LT(truthOf(y)["rotation_error_deg"].as<double>(), 0.1);
   EXPECT_LT(truthOf(y)["translation_error_m"].as<double>(), 0.03);
   // The summary line and one warning line naming the offset and what to set.
-  EXPECT_NE(r.out.find("  time offset      +5"), std::string::npos) << r.out;
+  const auto line = r.out.find("  time offset      +");
+  ASSERT_NE(line, std::string::npos) << r.out;
+  EXPECT_NEAR(std::stod(r.out.substr(line + 19)), 60.0, 5.0) << r.out;  // ms
   EXPECT_NE(r.out.find("(estimated"), std::string::npos) << r.out;
-  const auto warning = r.err.find("calibrate_bag: warning: the thermal images were captured 5");
+  const std::string said = "calibrate_bag: warning: the thermal images were captured ";
+  const auto warning = r.err.find(said);
   ASSERT_NE(warning, std::string::npos) << r.err;
+  EXPECT_NEAR(std::stod(r.err.substr(warning + said.size())), 60.0, 5.0) << r.err;
   EXPECT_NE(r.err.find("time_offset_mode: fixed", warning), std::string::npos) << r.err;
   // The report shows the profile and says the offset.
   EXPECT_FALSE(cv::imread(report + "/time_offset.png").empty());

@@ -69,8 +69,35 @@ TEST(Psi, AMarginTakesThatMuchOffEachPointInFrontDownToZero) {
   const LossEvaluator plain(smallCamera(), {pairWith({{0.0f, 0.0f, 1.0f}})},
                             LossConfig{5.0, PixelRule::kBilinear});
   EXPECT_DOUBLE_EQ(plain.withMargin(2.5).pairLoss(0, Extrinsic{}), 7.5);  // shares the maps
-  EXPECT_DOUBLE_EQ(plain.pairLoss(0, Extrinsic{}), 10.0);
+  EXPECT_DOUBLE_EQ(plain.pairLoss(0, Extrinsic{}), 9.5);  // the outline's half pixel only
   EXPECT_THROW(plain.withMargin(-1.0), std::invalid_argument);
+}
+
+// Beyond the paper: the sub-pixel rule reads the distance from the person pixels' outline, half a
+// pixel beyond their centres, so a point on a person's outline costs nothing at the true pose
+// (the mask marks the pixels whose centre a person covers: the outline lies between the last
+// person pixel's centre and the next pixel's). The paper's rule is unchanged.
+TEST(Psi, TheSubPixelRuleReadsFromThePersonPixelsOutline) {
+  const auto read = [](const Eigen::Vector3f& point, double outline, PixelRule rule) {
+    LossConfig config{5.0, rule};
+    config.outline_px = outline;
+    const LossEvaluator loss(smallCamera(), {pairWith({point})}, config);
+    return loss.pairLoss(0, Extrinsic{});
+  };
+  // (60.5, 40): on the edge of the person pixel (60, 40); (61, 40): half a pixel beyond it.
+  EXPECT_NEAR(read({0.105f, 0.0f, 1.0f}, 0.5, PixelRule::kBilinear), 0.0, 1e-6);
+  EXPECT_NEAR(read({0.105f, 0.0f, 1.0f}, 0.0, PixelRule::kBilinear), 0.5, 1e-5);
+  EXPECT_NEAR(read({0.11f, 0.0f, 1.0f}, 0.5, PixelRule::kBilinear), 0.5, 1e-5);
+  EXPECT_NEAR(read({0.0f, 0.0f, 1.0f}, 0.5, PixelRule::kBilinear), 9.5, 1e-5);   // (50, 40)
+  EXPECT_DOUBLE_EQ(read({0.0f, 0.0f, 1.0f}, 0.5, PixelRule::kNearest), 10.0);    // the paper's
+  EXPECT_DOUBLE_EQ(read({0.1f, 0.0f, -1.0f}, 0.5, PixelRule::kBilinear), 5.0 * 100.0);
+  // A margin counts from the centres: the larger of the two applies, they do not add up.
+  LossConfig config{5.0, PixelRule::kBilinear};
+  const LossEvaluator loss(smallCamera(), {pairWith({{0.0f, 0.0f, 1.0f}})}, config);
+  EXPECT_DOUBLE_EQ(loss.withMargin(1.0).pairLoss(0, Extrinsic{}), 9.0);
+  EXPECT_DOUBLE_EQ(loss.withMargin(0.2).pairLoss(0, Extrinsic{}), 9.5);
+  EXPECT_DOUBLE_EQ(loss.withOutline(0.0).pairLoss(0, Extrinsic{}), 10.0);  // shares the maps
+  EXPECT_THROW(loss.withOutline(-0.5), std::invalid_argument);
 }
 
 TEST(Psi, AMarginAndATimeOffsetCombineInEitherOrder) {
@@ -78,10 +105,11 @@ TEST(Psi, AMarginAndATimeOffsetCombineInEitherOrder) {
   CalibrationPair pair = pairWith({{0.0f, 0.0f, 1.0f}});
   pair.point_velocity = {{1.0f, 0.0f, 0.0f}};
   const LossEvaluator timed(smallCamera(), {pair}, LossConfig{5.0, PixelRule::kBilinear, 0.0});
-  EXPECT_NEAR(timed.withTimeOffset(0.05).pairLoss(0, Extrinsic{}), 5.0, 1e-4);
+  EXPECT_NEAR(timed.withTimeOffset(0.05).pairLoss(0, Extrinsic{}), 4.5, 1e-4);  // outline 0.5
   EXPECT_NEAR(timed.withTimeOffset(0.05).withMargin(1.0).pairLoss(0, Extrinsic{}), 4.0, 1e-4);
   EXPECT_NEAR(timed.withMargin(1.0).withTimeOffset(0.05).pairLoss(0, Extrinsic{}), 4.0, 1e-4);
   EXPECT_NEAR(timed.withMargin(1.0).pairLoss(0, Extrinsic{}), 9.0, 1e-4);  // still at delta 0
+  EXPECT_NEAR(timed.withTimeOffset(0.05).withOutline(0.0).pairLoss(0, Extrinsic{}), 5.0, 1e-4);
 }
 
 TEST(Psi, FarAwayProjectionsStayFinite) {
@@ -100,7 +128,8 @@ TEST(Psi, DistortionIsAppliedWhenProjecting) {
 }
 
 TEST(Psi, BilinearRuleIsContinuous) {
-  EXPECT_NEAR(psi({0.055f, 0.0f, 1.0f}, smallCamera(), PixelRule::kBilinear), 4.5, 1e-5);
+  EXPECT_NEAR(psi({0.055f, 0.0f, 1.0f}, smallCamera(), PixelRule::kBilinear), 4.0, 1e-5);  // 4.5 - 0.5
+  EXPECT_NEAR(psi({0.056f, 0.0f, 1.0f}, smallCamera(), PixelRule::kBilinear), 3.9, 1e-4);
   EXPECT_NEAR(psi({0.055f, 0.0f, 1.0f}, smallCamera(), PixelRule::kNearest), 4.0, 1e-9);
 }
 

@@ -60,6 +60,10 @@ struct RefineConfig {
   // After the first refinement, refine again from the pose turned by +-1 .. +-ring_alias_turns
   // ring spacings about the camera's x axis and keep a clearly better one (ring_alias.hpp); 0: off.
   int ring_alias_turns = 2;
+  // The sub-pixel loss reads distances from the person pixels' outline, this far beyond their
+  // centres (LossConfig::outline_px): points on a person's outline then cost nothing at the true
+  // pose, and the fit no longer shrinks the projected people. 0: from the centres.
+  double outline_px = 0.5;
   static const ParameterRanges<RefineConfig>& ranges();  // checked by validate()
   void validate() const;
 };

@@ -35,6 +35,15 @@ struct LossConfig {
   // a mask costs nothing, psi' = max(0, psi - margin_px); the vertical centring's loss
   // (vertical_centring.hpp).
   double margin_px = 0.0;
+  // Beyond the paper, the sub-pixel rule only: a mask marks the pixels whose centre a person
+  // covers, and the distance map measures from those centres, so a point on a person's true
+  // outline reads about half a pixel (the outline lies anywhere between the last person pixel's
+  // centre and the next pixel's) and the loss's minimum pulls the outline points inward: the
+  // projected people shrink, which is the forward lean of the translation and part of the
+  // vertical one (issue 24). The sub-pixel rule reads from the person pixels' outline instead,
+  // half a pixel beyond their centres: psi' = max(0, psi - outline_px). A margin counts from the
+  // centres as before; the larger of the two applies. 0 = distances from the centres.
+  double outline_px = 0.5;
   static const ParameterRanges<LossConfig>& ranges();  // checked by validate()
   void validate() const;
 };
@@ -75,6 +84,8 @@ class LossEvaluator {
   bool hasMotion() const;
   // The same with another LossConfig::margin_px (shares the prepared data).
   LossEvaluator withMargin(double margin_px) const;
+  // The same with another LossConfig::outline_px (shares the prepared data).
+  LossEvaluator withOutline(double outline_px) const;
 
   std::size_t pairCount() const;
   // True when pair i's people touch the image border: the mask shows only part of someone the

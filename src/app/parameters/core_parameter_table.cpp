@@ -256,6 +256,10 @@ void addOptimizerRows(ParameterTable<CoreParameters>& t) {
                  "after the first refinement, refine again from the pose turned by up to this many LiDAR ring "
                  "spacings up and down the image, and keep one whose loss is clearly lower (a fit one ring off "
                  "the truth is a local minimum); 0: off");
+  refine.real("refine_outline_px", &RefineConfig::outline_px, kConfigRange, "px",
+              "the refinement's sub-pixel loss measures a point's distance from the person pixels' outline, this "
+              "far beyond their centres (a mask marks the pixels whose centre a person covers, so a point on a "
+              "person's outline lies about half a pixel from the nearest one); 0: from the centres");
 }
 
 }  // namespace
