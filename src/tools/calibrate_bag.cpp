@@ -232,7 +232,8 @@ BagIngestStats restoreFromDatasetBag(const std::string& path, DatasetBuilder& bu
   for (const std::string& error : restored.skipped) ++stats.bad_message_errors[error];
   if (restored.pairs == 0 && restored.candidates > 0) {
     stats.damage = "the dataset bag holds " + std::to_string(restored.candidates) +
-                   " association candidates but no pair of the count rule, which the first fit needs";
+                   " association candidates but no pair of the count rule, which the first fit needs: "
+                   "resume the node (~resume) on more of the drive until it keeps frames whose counts agree";
   }
   return stats;
 }

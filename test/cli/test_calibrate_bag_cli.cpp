@@ -349,3 +349,29 @@ TEST_F(CalibrateBagCli, ADatasetBagsCandidatesAreReadAsTheNodeHeldThem) {
   EXPECT_EQ(y["pairs_by_rule"]["counts"].as<int>(), spec.frames / 2) << r.err;
   EXPECT_EQ(y["association"]["candidate_frames"].as<int>(), spec.frames / 2) << r.err;
 }
+
+// A dataset bag whose frames were all held as association candidates (today's count rule keeps
+// none of them: here every cluster is below min_points_per_cluster) has nothing for the first
+// fit, which association needs: one line that says so, not an empty fit.
+TEST_F(CalibrateBagCli, ADatasetBagOfCandidatesAloneIsOneLineSayingTheFirstFitNeedsPairs) {
+  BagSpec spec;
+  const std::string path = bag(spec, "only_candidates.bag");
+  {
+    rosbag::Bag b(path, rosbag::bagmode::Append);
+    for (int f = 0; f < spec.frames; ++f) {
+      std_msgs::String marker;
+      marker.data = thermal_lidar_calibration::ros_io::datasetMarkerText({true, static_cast<std::uint64_t>(4 * f)});
+      b.write(thermal_lidar_calibration::ros_io::DatasetBagTopics::kCandidateMarker, ros::Time(1000.0 + 0.1 * f),
+              marker);
+    }
+  }
+  std::ofstream(dir_ + "/big.yaml") << "min_points_per_cluster: 100000\n";
+  const RunResult r = run("--bag '" + path + "' --config '" + dir_ + "/big.yaml' --output '" + dir_ + "/out.yaml'");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("calibrate_bag: error: no pairs in the dataset bag " + path + ": the dataset bag holds " +
+                       std::to_string(spec.frames) + " association candidates but no pair of the count rule, "
+                       "which the first fit needs: resume the node (~resume) on more of the drive"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::ifstream(dir_ + "/out.yaml").good()) << "no result file from no pairs";
+}
