@@ -39,8 +39,8 @@ struct LossConfig {
   // covers, and the distance map measures from those centres, so a point on a person's true
   // outline reads about half a pixel (the outline lies anywhere between the last person pixel's
   // centre and the next pixel's) and the loss's minimum pulls the outline points inward: the
-  // projected people shrink, which is the forward lean of the translation and part of the
-  // vertical one (issue 24). The sub-pixel rule reads from the person pixels' outline instead,
+  // projected people shrink, and the translation leaned forward on every drive (issue 24,
+  // docs/validation/accuracy.md). The sub-pixel rule reads from the person pixels' outline instead,
   // half a pixel beyond their centres: psi' = max(0, psi - outline_px). A margin counts from the
   // centres as before; the larger of the two applies. 0 = distances from the centres.
   double outline_px = 0.5;
