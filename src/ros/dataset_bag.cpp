@@ -180,10 +180,6 @@ DatasetBagCounts countDatasetBag(const std::string& path) {
   }
 }
 
-std::size_t countDatasetBagPairs(const std::string& path) { return countDatasetBag(path).pairs; }
-
-std::size_t countDatasetBagCandidates(const std::string& path) { return countDatasetBag(path).candidates; }
-
 RestoredDataset restoreDataset(DatasetBagContents contents, DatasetBuilder& builder) {
   RestoredDataset restored;
   restored.skipped = std::move(contents.errors);

@@ -327,21 +327,28 @@ TEST_F(CalibrateBagCli, DatasetBagFromTheNodeIsNotSkippedAgain) {
   EXPECT_EQ(YAML::LoadFile(dir_ + "/out.yaml")["pairs_collected"].as<int>(), spec.frames);
 }
 
+namespace {
+
+// Turns a bag of `frames` frames (BagSpec: 0.1 s apart from t = 1000 s) into a node's dataset bag
+// whose every frame was held as an association candidate, every 4th frame offered.
+void markAllAsCandidates(const std::string& path, int frames) {
+  rosbag::Bag b(path, rosbag::bagmode::Append);
+  for (int f = 0; f < frames; ++f) {
+    std_msgs::String marker;
+    marker.data = thermal_lidar_calibration::ros_io::datasetMarkerText({true, static_cast<std::uint64_t>(4 * f)});
+    b.write(thermal_lidar_calibration::ros_io::DatasetBagTopics::kCandidateMarker, ros::Time(1000.0 + 0.1 * f), marker);
+  }
+}
+
+}  // namespace
+
 // Frames a node held as association candidates come back as candidates at their place (the
 // node's result again: test_node_resume.py); one that today's count rule keeps (here the
 // one-person frames, H_max 1) becomes a pair of that rule.
 TEST_F(CalibrateBagCli, ADatasetBagsCandidatesAreReadAsTheNodeHeldThem) {
   BagSpec spec;  // one person in even frames, two in odd ones
   const std::string path = bag(spec, "candidates.bag");
-  {
-    rosbag::Bag b(path, rosbag::bagmode::Append);
-    for (int f = 0; f < spec.frames; ++f) {
-      std_msgs::String marker;
-      marker.data = thermal_lidar_calibration::ros_io::datasetMarkerText({true, static_cast<std::uint64_t>(4 * f)});
-      b.write(thermal_lidar_calibration::ros_io::DatasetBagTopics::kCandidateMarker, ros::Time(1000.0 + 0.1 * f),
-              marker);
-    }
-  }
+  markAllAsCandidates(path, spec.frames);
   std::ofstream(dir_ + "/h1.yaml") << "population_size: 150\nmax_iterations: 80\nseed: 3\nmax_people: 1\nuncertainty: false\n";
   const RunResult r = run("--bag '" + path + "' --config '" + dir_ + "/h1.yaml' --output '" + dir_ + "/out.yaml'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -356,15 +363,7 @@ TEST_F(CalibrateBagCli, ADatasetBagsCandidatesAreReadAsTheNodeHeldThem) {
 TEST_F(CalibrateBagCli, ADatasetBagOfCandidatesAloneIsOneLineSayingTheFirstFitNeedsPairs) {
   BagSpec spec;
   const std::string path = bag(spec, "only_candidates.bag");
-  {
-    rosbag::Bag b(path, rosbag::bagmode::Append);
-    for (int f = 0; f < spec.frames; ++f) {
-      std_msgs::String marker;
-      marker.data = thermal_lidar_calibration::ros_io::datasetMarkerText({true, static_cast<std::uint64_t>(4 * f)});
-      b.write(thermal_lidar_calibration::ros_io::DatasetBagTopics::kCandidateMarker, ros::Time(1000.0 + 0.1 * f),
-              marker);
-    }
-  }
+  markAllAsCandidates(path, spec.frames);
   std::ofstream(dir_ + "/big.yaml") << "min_points_per_cluster: 100000\n";
   const RunResult r = run("--bag '" + path + "' --config '" + dir_ + "/big.yaml' --output '" + dir_ + "/out.yaml'");
   EXPECT_NE(r.exit_code, 0);

@@ -162,12 +162,12 @@ TEST(DatasetBagWriter, AnAppendAddsOnlyOneSmallIndexRecord) {
   EXPECT_EQ(connectionsIn(path), 5u);
   const double per_pair = static_cast<double>(writer.indexBytes() - index_after_one) / 39.0;
   EXPECT_LT(per_pair, 200.0) << "the index grows by " << per_pair << " bytes per pair";
-  EXPECT_EQ(tlc::ros_io::countDatasetBagPairs(path), 40u);
+  EXPECT_EQ(tlc::ros_io::countDatasetBag(path).pairs, 40u);
   // A writer that continues the bag (~resume) reuses its connections too.
   DatasetBagWriter resumed(path, true);
   write(resumed, makePair(200.0, 1));
   EXPECT_EQ(connectionsIn(path), 5u);
-  EXPECT_EQ(tlc::ros_io::countDatasetBagPairs(path), 41u);
+  EXPECT_EQ(tlc::ros_io::countDatasetBag(path).pairs, 41u);
 }
 
 // What rosbag reads back is what was written: the messages, their types, topics and times.
@@ -233,7 +233,7 @@ TEST(DatasetBagWriter, ContinuesABagWrittenByRosbag) {
 }
 
 // Pairing by association: the frames held as candidates are stored with the pairs, each with
-// its kind and its place among the frames offered; countDatasetBagPairs counts the pairs only,
+// its kind and its place among the frames offered; countDatasetBag counts pairs and candidates apart,
 // and a marker from before the frame number was recorded reads as a pair in order.
 TEST(DatasetBagWriter, StoresAssociationCandidatesWithTheirKindAndPlace) {
   const std::string dir = tlc::test_support::tempDir("tlc_dataset_kinds_");
@@ -253,8 +253,8 @@ TEST(DatasetBagWriter, StoresAssociationCandidatesWithTheirKindAndPlace) {
   EXPECT_TRUE(contents.kinds[1].candidate);
   EXPECT_EQ(contents.kinds[1].frame_index, 12u);
   EXPECT_EQ(contents.kinds[2].frame_index, 17u);
-  EXPECT_EQ(tlc::ros_io::countDatasetBagPairs(path), 2u);
-  EXPECT_EQ(tlc::ros_io::countDatasetBagCandidates(path), 1u);
+  EXPECT_EQ(tlc::ros_io::countDatasetBag(path).pairs, 2u);
+  EXPECT_EQ(tlc::ros_io::countDatasetBag(path).candidates, 1u);
 
   const tlc::StoredFrameKind old_pair = tlc::ros_io::parseDatasetMarker("pair kept by calibration_node (already gated)");
   EXPECT_FALSE(old_pair.candidate);
@@ -340,5 +340,5 @@ TEST(DatasetBagWriter, ADeathInsideAnAppendIsUndoneFromTheJournal) {
   EXPECT_FALSE(std::filesystem::exists(path + ".journal"));
   DatasetBagWriter resumed(path, true);
   write(resumed, makePair(500.0, 1));
-  EXPECT_EQ(tlc::ros_io::countDatasetBagPairs(path), static_cast<std::size_t>(acknowledged) + 1);
+  EXPECT_EQ(tlc::ros_io::countDatasetBag(path).pairs, static_cast<std::size_t>(acknowledged) + 1);
 }

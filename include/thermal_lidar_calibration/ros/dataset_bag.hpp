@@ -95,13 +95,9 @@ struct DatasetBagContents {
 // std::runtime_error if the bag cannot be opened.
 DatasetBagContents readDatasetBag(const std::string& path, bool recover = true);
 
-// The number of pairs the bag at `path` holds (association candidates not counted), read back
-// from its index (one marker message per pair), for answers that must be true rather than what
-// the writer believes. Throws std::runtime_error naming the bag when it cannot be read.
-std::size_t countDatasetBagPairs(const std::string& path);
-// The same for the frames held as association candidates.
-std::size_t countDatasetBagCandidates(const std::string& path);
-// Both from one reading of the index.
+// The pairs and the association candidates the bag at `path` holds, read back from its index
+// (one marker message per frame, on a topic per kind), for answers that must be true rather than
+// what the writer believes. Throws std::runtime_error naming the bag when it cannot be read.
 struct DatasetBagCounts {
   std::size_t pairs = 0, candidates = 0;
 };
