@@ -9,7 +9,8 @@ const ParameterRanges<LossConfig>& LossConfig::ranges() {
   static const auto ranges = ParameterRanges<LossConfig>()
       .add("behind_camera_penalty_c1", &LossConfig::behind_camera_penalty_c1, aboveRange(0, 1e6))
       .add("margin_px", &LossConfig::margin_px, closedRange(0, 1000))
-      .add("outline_px", &LossConfig::outline_px, closedRange(0, 1));
+      .add("outline_px", &LossConfig::outline_px, closedRange(0, 1))
+      .add("ring_end_weight", &LossConfig::ring_end_weight, closedRange(0, 100));
   return ranges;
 }
 
@@ -64,7 +65,8 @@ const ParameterRanges<RefineConfig>& RefineConfig::ranges() {
       .add("refine_min_step_trans_m", &RefineConfig::min_step_trans_m, aboveRange(0, 10))
       .add("refine_max_evaluations", &RefineConfig::max_evaluations, IntRange{1, 100000000})
       .add("refine_ring_alias_turns", &RefineConfig::ring_alias_turns, IntRange{0, 5})
-      .add("refine_outline_px", &RefineConfig::outline_px, closedRange(0, 1));
+      .add("refine_outline_px", &RefineConfig::outline_px, closedRange(0, 1))
+      .add("refine_ring_end_weight", &RefineConfig::ring_end_weight, closedRange(0, 100));
   return ranges;
 }
 

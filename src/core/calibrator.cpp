@@ -272,9 +272,16 @@ bool leaveRingAlias(const LossEvaluator& nearest, const std::vector<CalibrationP
 // offset is to be estimated and these pairs resolve it, the coarse search over the offset and the
 // joint refinement. Pairs with people cut by the image border are left out of the re-selection
 // (refine.exclude_truncated). Returns the pairs used.
-std::vector<std::size_t> refine(const LossEvaluator& nearest, const std::vector<CalibrationPair>& pairs,
+std::vector<std::size_t> refine(const LossEvaluator& paper, const std::vector<CalibrationPair>& pairs,
                                 const CalibrationConfig& config, std::vector<std::size_t> used, Reporter& report,
                                 CalibrationResult& result) {
+  // Beyond the paper (issue 24, ring_ends.hpp): the sub-pixel readings also charge where each
+  // ring leaves its person, against the person's own region where the pose found so far projects
+  // it (the nearest-pixel readings, and so the inlier selection, are the paper's).
+  const LossEvaluator nearest = config.refine.ring_end_weight > 0.0
+                                    ? paper.withRingEnds(pairs, result.extrinsic, config.refine.ring_end_weight)
+                                    : paper.withPixelRule(paper.config().pixel_rule);
+  result.ring_ends = nearest.ringEndCount();
   const std::vector<std::size_t> candidates = refinementCandidates(nearest, config.refine.exclude_truncated);
   if (!config.refine.reselect_inliers) {
     // One refinement on Algorithm 2's inliers, less the excluded pairs.

@@ -107,7 +107,20 @@ struct LossEvaluator::Impl {
   bool distorted = false;
   float penalty = 0.0f;
   Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
+  std::vector<RingEndSet> ring_ends;  // per pair; empty without withRingEnds
   mutable std::atomic<std::uint64_t> points{0};
+
+  // The same pairs (points copied, distance maps shared), lens and ring ends; its own count.
+  std::shared_ptr<Impl> copy() const {
+    auto out = std::make_shared<Impl>();
+    out->pairs = pairs;
+    out->lens = lens;
+    out->distorted = distorted;
+    out->penalty = penalty;
+    out->K = K;
+    out->ring_ends = ring_ends;
+    return out;
+  }
 
   // Fold K into [R | t] when there is no distortion: one mat-vec and one reciprocal per point.
   Params paramsOf(const Extrinsic& e) const { return paramsOf(e.rotationMatrix(), e.translation); }
@@ -123,16 +136,36 @@ struct LossEvaluator::Impl {
     return out;
   }
 
-  // Eq. (1): the mean psi over the pair's points.
-  double pairLoss(const Params& m, const PreparedPair& pair, const kernels::MapView& map,
-                  const kernels::Points& pts, PixelRule rule, float margin) const {
+  // Eq. (1): the mean psi over the pair's points; with the sub-pixel rule and a ring-end weight,
+  // plus the weighted mean ring-end cost of the pair (index i).
+  double pairLoss(const Params& m, std::size_t i, const PreparedPair& pair, const kernels::MapView& map,
+                  const kernels::Points& pts, PixelRule rule, float margin, double ring_weight) const {
     const float sum = kernels::sumPsi(m.data(), distorted, rule == PixelRule::kBilinear, lens, pts,
                                       map, penalty, margin);
-    return static_cast<double>(sum) / static_cast<double>(pair.count);
+    const double mean = static_cast<double>(sum) / static_cast<double>(pair.count);
+    if (rule != PixelRule::kBilinear || !(ring_weight > 0.0) || ring_ends.empty() || ring_ends[i].ends.empty()) {
+      return mean;
+    }
+    return mean + ring_weight * ringEndCost(m, pair, ring_ends[i]);
   }
-  double pairLoss(const Params& m, std::size_t i, PixelRule rule, float margin) const {
+  double pairLoss(const Params& m, std::size_t i, PixelRule rule, float margin, double ring_weight) const {
     const PreparedPair& pair = pairs[i];
-    return pairLoss(m, pair, viewOf(pair.distance), pointsOf(pair), rule, margin);
+    return pairLoss(m, i, pair, viewOf(pair.distance), pointsOf(pair), rule, margin, ring_weight);
+  }
+
+  // The mean ringEndCost over the pair's assigned ends; an end behind the camera costs the cap.
+  double ringEndCost(const Params& m, const PreparedPair& pair, const RingEndSet& set) const {
+    constexpr float cap = LossConfig::kRingEndCapPx;
+    double sum = 0.0;
+    for (const AssignedRingEnd& e : set.ends) {
+      float u, v, un, vn;
+      const bool front =
+          kernels::projectPoint(m.data(), distorted, lens, pair.x[e.point], pair.y[e.point], pair.z[e.point], u, v) &&
+          kernels::projectPoint(m.data(), distorted, lens, pair.x[e.neighbour], pair.y[e.neighbour],
+                                pair.z[e.neighbour], un, vn);
+      sum += front ? thermal_lidar_calibration::ringEndCost(set.outlines[e.outline], e.side, u, v, un, vn, cap) : cap;
+    }
+    return sum / static_cast<double>(set.ends.size());
   }
 };
 
@@ -191,13 +224,8 @@ LossEvaluator LossEvaluator::withTimeOffset(double time_offset_s) const {
   if (!config_.time_offset_s) throw std::logic_error("loss: withTimeOffset on an evaluator without a time offset");
   LossConfig config = config_;
   config.time_offset_s = time_offset_s;
-  auto impl = std::make_shared<Impl>();
-  impl->pairs = impl_->pairs;  // copies the points, shares the distance maps
+  auto impl = impl_->copy();
   for (PreparedPair& pair : impl->pairs) pair.moveTo(time_offset_s);
-  impl->lens = impl_->lens;
-  impl->distorted = impl_->distorted;
-  impl->penalty = impl_->penalty;
-  impl->K = impl_->K;
   return LossEvaluator(camera_, config, impl);
 }
 
@@ -220,6 +248,42 @@ LossEvaluator LossEvaluator::withOutline(double outline_px) const {
   config.outline_px = outline_px;
   config.validate();
   return LossEvaluator(camera_, config, impl_);
+}
+
+LossEvaluator LossEvaluator::withRingEnds(const std::vector<CalibrationPair>& pairs, const Extrinsic& at,
+                                          double weight, const RingEndRules& rules) const {
+  if (pairs.size() != impl_->pairs.size()) {
+    throw std::invalid_argument("loss: withRingEnds needs the evaluator's own pairs");
+  }
+  LossConfig config = config_;
+  config.ring_end_weight = weight;
+  config.validate();
+  auto impl = impl_->copy();
+  impl->ring_ends.assign(pairs.size(), {});
+  const Params m = impl->paramsOf(at);
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const PreparedPair& p = impl->pairs[i];
+    if (pairs[i].points.size() != p.count) {
+      throw std::invalid_argument("loss: withRingEnds needs the evaluator's own pairs");
+    }
+    const std::vector<RingEnd> ends = findRingEnds(pairs[i].points, pairs[i].labels);
+    if (ends.empty()) continue;
+    std::vector<Eigen::Vector2f> pixels(p.count, Eigen::Vector2f::Constant(std::nanf("")));
+    for (std::size_t k = 0; k < p.count; ++k) {
+      float u, v;
+      if (kernels::projectPoint(m.data(), impl->distorted, impl->lens, p.x[k], p.y[k], p.z[k], u, v)) {
+        pixels[k] = Eigen::Vector2f(u, v);
+      }
+    }
+    impl->ring_ends[i] = assignRingEnds(pairs[i].mask, pairs[i].labels, ends, pixels, rules);
+  }
+  return LossEvaluator(camera_, config, impl);
+}
+
+std::size_t LossEvaluator::ringEndCount() const {
+  std::size_t n = 0;
+  for (const RingEndSet& set : impl_->ring_ends) n += set.ends.size();
+  return n;
 }
 
 std::size_t LossEvaluator::pairCount() const { return impl_->pairs.size(); }
@@ -248,7 +312,7 @@ Eigen::Vector3d LossEvaluator::centroid(const std::vector<std::size_t>& pairs) c
 double LossEvaluator::pairLoss(std::size_t pair, const Extrinsic& extrinsic) const {
   impl_->points += impl_->pairs.at(pair).count;
   return impl_->pairLoss(impl_->paramsOf(extrinsic), pair, config_.pixel_rule,
-                         marginOf(config_, config_.pixel_rule));
+                         marginOf(config_, config_.pixel_rule), config_.ring_end_weight);
 }
 
 double LossEvaluator::loss(const Extrinsic& extrinsic, const std::vector<std::size_t>& subset) const {
@@ -297,7 +361,7 @@ void LossEvaluator::lossBatch(const std::vector<Extrinsic>& candidates,
       const kernels::MapView map = viewOf(pair.distance);
       const kernels::Points pts = pointsOf(pair);
       for (std::size_t c = begin; c < end; ++c) {
-        sums[c - begin] += impl_->pairLoss(params[c], pair, map, pts, rule, margin);
+        sums[c - begin] += impl_->pairLoss(params[c], pi, pair, map, pts, rule, margin, config_.ring_end_weight);
       }
     }
     for (std::size_t c = begin; c < end; ++c) out[c] = sums[c - begin] / pair_count;

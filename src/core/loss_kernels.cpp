@@ -382,5 +382,10 @@ bool atLeastInside(const float* m, bool distorted, const Lens& lens, const Point
   return inside >= needed;
 }
 
+bool projectPoint(const float* m, bool distorted, const Lens& lens, float x, float y, float z, float& u,
+                  float& v) {
+  return distorted ? projectScalar<true>(m, lens, x, y, z, u, v) : projectScalar<false>(m, kNoLens, x, y, z, u, v);
+}
+
 }  // namespace kernels
 }  // namespace thermal_lidar_calibration

@@ -49,6 +49,10 @@ float sumPsiScalar(const float* m, bool distorted, bool bilinear, const Lens& le
 int countInsideScalar(const float* m, bool distorted, const Lens& lens, const Points& p,
                       int width, int height);
 
+// One point's pixel as the kernels project it; false when it is behind the camera.
+bool projectPoint(const float* m, bool distorted, const Lens& lens, float x, float y, float z, float& u,
+                  float& v);
+
 // True when sumPsi / countInside run the AVX2+FMA code on this CPU; false when they are the
 // portable code (then comparing the two compares the portable code with itself).
 bool vectorPathActive();

@@ -37,9 +37,13 @@ QualityAssessment assessQuality(const CameraModel& camera,
   // The pairs at the fit's time offset (issue 21): the bootstrap refines it too when it was
   // estimated.
   const bool timed = result.time_offset_mode != TimeOffsetMode::kNone;
-  const LossEvaluator loss(camera, pairs,
+  const LossEvaluator read(camera, pairs,
                            LossConfig{behind_camera_penalty_c1, PixelRule::kBilinear,
                                       timed ? std::optional<double>(result.time_offset_s) : std::nullopt});
+  // The resamples read what the fit read: the rings' ends too when it did (ring_ends.hpp).
+  const LossEvaluator loss = result.ring_ends > 0 && config.ring_end_weight > 0.0
+                                 ? read.withRingEnds(pairs, result.extrinsic, config.ring_end_weight)
+                                 : read.withPixelRule(PixelRule::kBilinear);
   if (config.uncertainty_enabled && used.size() >= 3) {
     const bool estimated = result.time_offset_mode == TimeOffsetMode::kEstimate;
     // When calibrate() ran the vertical centring, each resample goes through it too.

@@ -64,6 +64,10 @@ struct RefineConfig {
   // centres (LossConfig::outline_px): points on a person's outline then cost nothing at the true
   // pose, and the fit no longer shrinks the projected people. 0: from the centres.
   double outline_px = 0.5;
+  // The sub-pixel loss also charges each LiDAR ring's two ends on a person how far along the row
+  // they lie from their own person's outline, this much (LossConfig::ring_end_weight,
+  // ring_ends.hpp); the ends are assigned to the people's regions at Algorithm 2's pose. 0: off.
+  double ring_end_weight = 1.0;
   static const ParameterRanges<RefineConfig>& ranges();  // checked by validate()
   void validate() const;
 };

@@ -56,6 +56,9 @@ struct CalibrationResult {
   double ring_spacing_rad = 0.0;
   int ring_alias_tried = 0;
   int ring_alias_turn = 0;
+  // With refine = local and refine.ring_end_weight > 0 (ring_ends.hpp): the rings' ends the
+  // refinement read against their own people's outlines, over all pairs (0: none).
+  std::size_t ring_ends = 0;
   std::size_t pairs_used = 0;
   std::size_t pairs_collected = 0;
   int outlier_fits_accepted = 0;    // Algorithm 2 fits with ratio_inliers >= ratio_solution

@@ -6,6 +6,7 @@
 #include "thermal_lidar_calibration/core/distance_map.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
 #include "thermal_lidar_calibration/core/parameter_range.hpp"
+#include "thermal_lidar_calibration/core/ring_ends.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -44,6 +45,12 @@ struct LossConfig {
   // half a pixel beyond their centres: psi' = max(0, psi - outline_px). A margin counts from the
   // centres as before; the larger of the two applies. 0 = distances from the centres.
   double outline_px = 0.5;
+  // Beyond the paper, the sub-pixel rule only, on an evaluator whose ring ends were assigned
+  // (LossEvaluator::withRingEnds, ring_ends.hpp): each pair's loss adds this times the mean over
+  // its rings' ends of ringEndCost (how far each end lies from where it should against its own
+  // person's outline, along the row), at most kRingEndCapPx each. 0 = off.
+  double ring_end_weight = 0.0;
+  static constexpr float kRingEndCapPx = 3.0f;
   static const ParameterRanges<LossConfig>& ranges();  // checked by validate()
   void validate() const;
 };
@@ -86,6 +93,14 @@ class LossEvaluator {
   LossEvaluator withMargin(double margin_px) const;
   // The same with another LossConfig::outline_px (shares the prepared data).
   LossEvaluator withOutline(double outline_px) const;
+  // The same with the rings' ends of each pair's people assigned to their own mask regions where
+  // the pose `at` projects them (assignRingEnds; `pairs` are the evaluator's, in its order), read
+  // with LossConfig::ring_end_weight `weight`. Copies the points, shares the distance maps.
+  // Throws std::invalid_argument when `pairs` are not the evaluator's.
+  LossEvaluator withRingEnds(const std::vector<CalibrationPair>& pairs, const Extrinsic& at, double weight,
+                             const RingEndRules& rules = {}) const;
+  // Ring ends assigned over all pairs (0 without withRingEnds).
+  std::size_t ringEndCount() const;
 
   std::size_t pairCount() const;
   // True when pair i's people touch the image border: the mask shows only part of someone the

@@ -23,6 +23,9 @@ struct QualityConfig {
   CoverageConfig coverage;
   VerdictConfig verdict;
   TimeOffsetConfig time_offset;  // the fit's time offset settings (normally the calibration's)
+  // The refinement's LossConfig::ring_end_weight (normally the calibration's): when the fit read
+  // ring ends (CalibrationResult::ring_ends), the resamples read them too, assigned at the estimate.
+  double ring_end_weight = 0.0;
   void validate() const;
 };
 

@@ -140,6 +140,8 @@ void emitRun(YAML::Emitter& out, const CalibrationResult& result, const ResultCo
     out << YAML::Key << "turn_kept" << YAML::Value << result.ring_alias_turn;
     out << YAML::EndMap;
   }
+  // The rings' ends the refinement read against their people's own outlines (ring_ends.hpp).
+  if (result.ring_ends > 0) out << YAML::Key << "ring_ends" << YAML::Value << result.ring_ends;
 
   out << YAML::Key << "algorithm" << YAML::Value
       << (context.parameters.calibration.algorithm == Algorithm::kPlain ? 1 : 2);

@@ -260,6 +260,11 @@ void addOptimizerRows(ParameterTable<CoreParameters>& t) {
               "the refinement's sub-pixel loss measures a point's distance from the person pixels' outline, this "
               "far beyond their centres (a mask marks the pixels whose centre a person covers, so a point on a "
               "person's outline lies about half a pixel from the nearest one); 0: from the centres");
+  refine.real("refine_ring_end_weight", &RefineConfig::ring_end_weight, kConfigRange, "",
+              "the refinement's sub-pixel loss also charges each LiDAR ring's first and last point on a person "
+              "how far along the image row it lies from where it should, half a point spacing inside that "
+              "person's own mask region (a mask loss alone is lowest where the projected people are smaller), "
+              "this much per pair; 0: off");
 }
 
 }  // namespace

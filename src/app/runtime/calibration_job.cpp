@@ -23,6 +23,7 @@ void assess(const CalibrationJobRequest& request, const std::vector<CalibrationP
   config.uncertainty.seed = calibration.seed;
   config.uncertainty.num_threads = calibration.num_threads;
   config.time_offset = calibration.time_offset;
+  config.ring_end_weight = calibration.refine.ring_end_weight;
   std::optional<Extrinsic> reference;
   if (request.reference) reference = request.reference->extrinsic;
   try {

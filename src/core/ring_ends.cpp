@@ -1,0 +1,215 @@
+#include "thermal_lidar_calibration/core/ring_ends.hpp"
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+namespace thermal_lidar_calibration {
+namespace {
+
+// At most this fraction of a person's elevation span may lie within its runs: a spinning LiDAR's
+// rings have next to no spread of their own, a person's span crosses the gaps between them
+// (0.33-2 deg).
+constexpr double kMaxCoveredFraction = 0.05;
+// A ring's own spread of elevation, at most (the Ouster's offset beams move by ~0.01 deg across a
+// person at 5 m).
+constexpr double kMaxRingSpreadRad = 0.05 * 3.14159265358979 / 180.0;
+
+}  // namespace
+
+std::vector<RingEnd> findRingEnds(const std::vector<Eigen::Vector3f>& points,
+                                  const std::vector<std::int32_t>& labels, double ring_gap_rad, int min_points) {
+  std::vector<RingEnd> ends;
+  if (labels.size() != points.size()) return ends;
+  struct Polar {
+    double elevation, azimuth;
+    std::uint32_t index;
+  };
+  // Azimuth about each person's own mean bearing, so that a person behind the sensor (where the
+  // bearing wraps at +-180 deg) has its ends at the ends of its span too.
+  std::map<std::int32_t, Eigen::Vector2d> bearing;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (labels[i] > 0 && points[i].allFinite()) {
+      const Eigen::Vector2d direction(points[i].x(), points[i].y());
+      if (direction.norm() > 0.0) {
+        bearing.try_emplace(labels[i], Eigen::Vector2d::Zero()).first->second += direction.normalized();
+      }
+    }
+  }
+  std::map<std::int32_t, std::vector<Polar>> by_label;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (labels[i] <= 0) continue;
+    const Eigen::Vector3f& p = points[i];
+    const double ground = std::hypot(static_cast<double>(p.x()), static_cast<double>(p.y()));
+    if (!(ground > 0.0) || !p.allFinite()) continue;
+    const Eigen::Vector2d& b = bearing.at(labels[i]);
+    const Eigen::Vector2d q(p.x(), p.y());
+    by_label[labels[i]].push_back({std::atan2(static_cast<double>(p.z()), ground),
+                                   std::atan2(b.x() * q.y() - b.y() * q.x(), b.dot(q)),
+                                   static_cast<std::uint32_t>(i)});
+  }
+  for (auto& [label, polar] : by_label) {
+    std::sort(polar.begin(), polar.end(), [](const Polar& a, const Polar& b) { return a.elevation < b.elevation; });
+    std::vector<std::pair<std::size_t, std::size_t>> runs;  // [begin, end) of each elevation run
+    double covered = 0.0;
+    for (std::size_t begin = 0; begin < polar.size();) {
+      std::size_t end = begin + 1;
+      while (end < polar.size() && polar[end].elevation - polar[end - 1].elevation < ring_gap_rad) ++end;
+      runs.emplace_back(begin, end);
+      covered += polar[end - 1].elevation - polar[begin].elevation;
+      begin = end;
+    }
+    // A spinning LiDAR puts a person's points on a few elevations: the runs cover a small part of
+    // the person's elevation span. Points spread over it (a solid-state pattern, points resampled
+    // or drawn at random heights) chain into runs whose extreme azimuths say nothing of where a
+    // scan line leaves the person: such a person has no ends.
+    const double span = polar.back().elevation - polar.front().elevation;
+    if (covered > std::max(kMaxCoveredFraction * span, ring_gap_rad)) continue;
+    for (const auto& [begin, end] : runs) {
+      // Sparse points at random heights also fall a few together by chance, spread over the gap;
+      // a scan line's points share one elevation.
+      if (static_cast<int>(end - begin) < min_points ||
+          polar[end - 1].elevation - polar[begin].elevation > kMaxRingSpreadRad) {
+        continue;
+      }
+      std::vector<Polar> ring(polar.begin() + static_cast<std::ptrdiff_t>(begin),
+                              polar.begin() + static_cast<std::ptrdiff_t>(end));
+      std::sort(ring.begin(), ring.end(), [](const Polar& a, const Polar& b) { return a.azimuth < b.azimuth; });
+      ends.push_back({ring.front().index, ring[1].index});
+      ends.push_back({ring.back().index, ring[ring.size() - 2].index});
+    }
+  }
+  return ends;
+}
+
+namespace {
+
+constexpr float kNoEdge = std::numeric_limits<float>::quiet_NaN();
+
+// The region each cluster owns (0: none): the region most of its projected points fall in, with
+// at least `min_inside` of them, and no other cluster owning it.
+std::map<std::int32_t, int> ownRegions(const cv::Mat& regions, const std::vector<std::int32_t>& labels,
+                                       const std::vector<Eigen::Vector2f>& pixels, double min_inside) {
+  std::map<std::int32_t, std::map<int, int>> hits;
+  std::map<std::int32_t, int> total;
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    if (labels[i] <= 0) continue;
+    ++total[labels[i]];
+    const Eigen::Vector2f& p = pixels[i];
+    if (!p.allFinite()) continue;
+    const int c = static_cast<int>(std::lround(p.x()));
+    const int r = static_cast<int>(std::lround(p.y()));
+    if (c < 0 || r < 0 || c >= regions.cols || r >= regions.rows) continue;
+    const int region = regions.at<int>(r, c);
+    if (region > 0) ++hits[labels[i]][region];
+  }
+  std::map<std::int32_t, int> owner;
+  std::map<int, int> claims;
+  for (const auto& [label, counts] : hits) {
+    const auto best = std::max_element(counts.begin(), counts.end(),
+                                       [](const auto& a, const auto& b) { return a.second < b.second; });
+    if (best->second >= min_inside * total[label]) {
+      owner[label] = best->first;
+      ++claims[best->first];
+    }
+  }
+  for (auto& [label, region] : owner) {
+    if (claims[region] > 1) region = 0;  // two people in one region: neither outline is known
+  }
+  return owner;
+}
+
+// The outline of region `region` (rows it spans): per row its outermost pixels on each side.
+PersonOutline outlineOf(const cv::Mat& regions, int region, int clearance) {
+  PersonOutline out;
+  int first = -1, last = -1;
+  std::vector<float> left, right;
+  for (int row = 0; row < regions.rows; ++row) {
+    const int* r = regions.ptr<int>(row);
+    int lo = -1, hi = -1;
+    for (int c = 0; c < regions.cols; ++c) {
+      if (r[c] == region) {
+        if (lo < 0) lo = c;
+        hi = c;
+      }
+    }
+    if (lo < 0) {
+      left.push_back(kNoEdge);
+      right.push_back(kNoEdge);
+      continue;
+    }
+    if (first < 0) first = row;
+    last = row;
+    // Usable when the image goes on beyond it and no other region lies within `clearance`.
+    const auto usable = [&](int edge, int side) {
+      for (int k = 1; k <= clearance + 1; ++k) {
+        const int c = edge + side * k;
+        if (c < 0 || c >= regions.cols) return false;
+        if (k <= clearance && r[c] != 0 && r[c] != region) return false;
+      }
+      return true;
+    };
+    left.push_back(usable(lo, -1) ? static_cast<float>(lo) - 0.5f : kNoEdge);
+    right.push_back(usable(hi, 1) ? static_cast<float>(hi) + 0.5f : kNoEdge);
+  }
+  if (first < 0) return out;
+  out.first_row = first;
+  out.left.assign(left.begin() + first, left.begin() + last + 1);
+  out.right.assign(right.begin() + first, right.begin() + last + 1);
+  return out;
+}
+
+}  // namespace
+
+RingEndSet assignRingEnds(const cv::Mat& mask, const std::vector<std::int32_t>& labels,
+                          const std::vector<RingEnd>& ends, const std::vector<Eigen::Vector2f>& pixels,
+                          const RingEndRules& rules) {
+  RingEndSet out;
+  if (ends.empty() || mask.empty() || labels.size() != pixels.size()) return out;
+  cv::Mat regions;
+  cv::connectedComponents(mask != 0, regions, 8, CV_32S);
+  const std::map<std::int32_t, int> owner = ownRegions(regions, labels, pixels, rules.min_inside);
+  std::map<int, std::uint32_t> outline_of;  // region -> index into out.outlines
+  for (const RingEnd& e : ends) {
+    if (e.point >= pixels.size() || e.neighbour >= pixels.size()) continue;
+    const auto own = owner.find(labels[e.point]);
+    if (own == owner.end() || own->second == 0) continue;
+    const Eigen::Vector2f& p = pixels[e.point];
+    const Eigen::Vector2f& n = pixels[e.neighbour];
+    if (!p.allFinite() || !n.allFinite() || p.x() == n.x()) continue;
+    auto known = outline_of.find(own->second);
+    if (known == outline_of.end()) {
+      out.outlines.push_back(outlineOf(regions, own->second, rules.clearance_px));
+      known = outline_of.emplace(own->second, static_cast<std::uint32_t>(out.outlines.size() - 1)).first;
+    }
+    out.ends.push_back({e.point, e.neighbour, p.x() > n.x() ? 1 : -1, known->second});
+  }
+  return out;
+}
+
+float ringEndCost(const PersonOutline& outline, int side, float u, float v, float un, float vn, float cap) {
+  const std::vector<float>& edge = side > 0 ? outline.right : outline.left;
+  const float f = v - static_cast<float>(outline.first_row);
+  if (!(f >= -1.0f) || !(u == u)) return cap;
+  const long r = static_cast<long>(std::floor(f));
+  const float a = f - static_cast<float>(r);
+  const auto at = [&](long row) { return row >= 0 && row < static_cast<long>(edge.size()) ? edge[row] : kNoEdge; };
+  const float e0 = at(r);
+  const float e1 = at(r + 1);
+  float column;
+  if (std::isfinite(e0) && std::isfinite(e1)) {
+    column = e0 + a * (e1 - e0);
+  } else if (std::isfinite(e0) || std::isfinite(e1)) {
+    column = std::isfinite(e0) ? e0 : e1;
+  } else {
+    return cap;
+  }
+  const float beyond = static_cast<float>(side) * (u - column);
+  const float half_step = 0.5f * std::hypot(u - un, v - vn);
+  return std::min(std::fabs(beyond + half_step), cap);
+}
+
+}  // namespace thermal_lidar_calibration
