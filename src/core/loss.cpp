@@ -107,7 +107,10 @@ struct LossEvaluator::Impl {
   bool distorted = false;
   float penalty = 0.0f;
   Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
-  std::vector<RingEndSet> ring_ends;  // per pair; empty without withRingEnds
+  // Per pair, the ring ends (withRingEnds; empty without) and the views the kernel reads, which
+  // point into the shared sets.
+  std::shared_ptr<const std::vector<RingEndSet>> ring_sets;
+  std::vector<std::vector<kernels::RingEndView>> ring_ends;
   mutable std::atomic<std::uint64_t> points{0};
 
   // The same pairs (points copied, distance maps shared), lens and ring ends; its own count.
@@ -118,6 +121,7 @@ struct LossEvaluator::Impl {
     out->distorted = distorted;
     out->penalty = penalty;
     out->K = K;
+    out->ring_sets = ring_sets;
     out->ring_ends = ring_ends;
     return out;
   }
@@ -143,7 +147,7 @@ struct LossEvaluator::Impl {
     const float sum = kernels::sumPsi(m.data(), distorted, rule == PixelRule::kBilinear, lens, pts,
                                       map, penalty, margin);
     const double mean = static_cast<double>(sum) / static_cast<double>(pair.count);
-    if (rule != PixelRule::kBilinear || !(ring_weight > 0.0) || ring_ends.empty() || ring_ends[i].ends.empty()) {
+    if (rule != PixelRule::kBilinear || !(ring_weight > 0.0) || ring_ends.empty() || ring_ends[i].empty()) {
       return mean;
     }
     return mean + ring_weight * ringEndCost(m, pair, ring_ends[i]);
@@ -154,18 +158,10 @@ struct LossEvaluator::Impl {
   }
 
   // The mean ringEndCost over the pair's assigned ends; an end behind the camera costs the cap.
-  double ringEndCost(const Params& m, const PreparedPair& pair, const RingEndSet& set) const {
-    constexpr float cap = LossConfig::kRingEndCapPx;
-    double sum = 0.0;
-    for (const AssignedRingEnd& e : set.ends) {
-      float u, v, un, vn;
-      const bool front =
-          kernels::projectPoint(m.data(), distorted, lens, pair.x[e.point], pair.y[e.point], pair.z[e.point], u, v) &&
-          kernels::projectPoint(m.data(), distorted, lens, pair.x[e.neighbour], pair.y[e.neighbour],
-                                pair.z[e.neighbour], un, vn);
-      sum += front ? thermal_lidar_calibration::ringEndCost(set.outlines[e.outline], e.side, u, v, un, vn, cap) : cap;
-    }
-    return sum / static_cast<double>(set.ends.size());
+  double ringEndCost(const Params& m, const PreparedPair& pair, const std::vector<kernels::RingEndView>& ends) const {
+    return kernels::sumRingEnds(m.data(), distorted, lens, pair.x.data(), pair.y.data(), pair.z.data(), ends.data(),
+                                static_cast<int>(ends.size()), LossConfig::kRingEndCapPx) /
+           static_cast<double>(ends.size());
   }
 };
 
@@ -259,7 +255,7 @@ LossEvaluator LossEvaluator::withRingEnds(const std::vector<CalibrationPair>& pa
   config.ring_end_weight = weight;
   config.validate();
   auto impl = impl_->copy();
-  impl->ring_ends.assign(pairs.size(), {});
+  auto sets = std::make_shared<std::vector<RingEndSet>>(pairs.size());
   const Params m = impl->paramsOf(at);
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const PreparedPair& p = impl->pairs[i];
@@ -275,14 +271,30 @@ LossEvaluator LossEvaluator::withRingEnds(const std::vector<CalibrationPair>& pa
         pixels[k] = Eigen::Vector2f(u, v);
       }
     }
-    impl->ring_ends[i] = assignRingEnds(pairs[i].mask, pairs[i].labels, ends, pixels, rules);
+    (*sets)[i] = assignRingEnds(pairs[i].mask, pairs[i].labels, ends, pixels, rules);
+  }
+  impl->ring_sets = sets;
+  impl->ring_ends.assign(pairs.size(), {});
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    for (const AssignedRingEnd& e : (*sets)[i].ends) {
+      const PersonOutline& o = (*sets)[i].outlines[e.outline];
+      const std::vector<float>& edge = e.side > 0 ? o.right : o.left;
+      impl->ring_ends[i].push_back(
+          {e.point, e.side, o.first_row, static_cast<int>(edge.size()), edge.data(), e.half_step});
+    }
   }
   return LossEvaluator(camera_, config, impl);
 }
 
+LossEvaluator LossEvaluator::withoutRingEnds() const {
+  LossConfig config = config_;
+  config.ring_end_weight = 0.0;
+  return LossEvaluator(camera_, config, impl_);
+}
+
 std::size_t LossEvaluator::ringEndCount() const {
   std::size_t n = 0;
-  for (const RingEndSet& set : impl_->ring_ends) n += set.ends.size();
+  for (const auto& ends : impl_->ring_ends) n += ends.size();
   return n;
 }
 

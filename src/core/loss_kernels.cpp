@@ -6,6 +6,8 @@
 
 #include "loss_kernels.hpp"
 
+#include "thermal_lidar_calibration/core/ring_ends.hpp"
+
 #include "float_ops.hpp"
 
 #include "thermal_lidar_calibration/core/distance_map.hpp"
@@ -380,6 +382,30 @@ bool atLeastInside(const float* m, bool distorted, const Lens& lens, const Point
     if (inside + (p.count - begin - chunk.count) < needed) return false;
   }
   return inside >= needed;
+}
+
+namespace {
+
+template <bool kDistorted>
+double sumRingEndsImpl(const float* m, const Lens& lens, const float* x, const float* y, const float* z,
+                       const RingEndView* ends, int count, float cap) {
+  double sum = 0.0;
+  for (int i = 0; i < count; ++i) {
+    const RingEndView& e = ends[i];
+    float u, v;
+    sum += projectScalar<kDistorted>(m, lens, x[e.point], y[e.point], z[e.point], u, v)
+               ? ringEndCost(e.edge, e.rows, e.first_row, e.side, u, v, e.half_step, cap)
+               : cap;
+  }
+  return sum;
+}
+
+}  // namespace
+
+double sumRingEnds(const float* m, bool distorted, const Lens& lens, const float* x, const float* y,
+                   const float* z, const RingEndView* ends, int count, float cap) {
+  return distorted ? sumRingEndsImpl<true>(m, lens, x, y, z, ends, count, cap)
+                   : sumRingEndsImpl<false>(m, kNoLens, x, y, z, ends, count, cap);
 }
 
 bool projectPoint(const float* m, bool distorted, const Lens& lens, float x, float y, float z, float& u,

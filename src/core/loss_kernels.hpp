@@ -49,6 +49,22 @@ float sumPsiScalar(const float* m, bool distorted, bool bilinear, const Lens& le
 int countInsideScalar(const float* m, bool distorted, const Lens& lens, const Points& p,
                       int width, int height);
 
+// One ring end as sumRingEnds reads it (ring_ends.hpp): its point's index, its outline's columns
+// on its side (`edge[k]` for image row first_row + k), where it lies inside on average.
+struct RingEndView {
+  std::uint32_t point;
+  int side;
+  int first_row;
+  int rows;
+  const float* edge;
+  float half_step;
+};
+
+// Sum over the ends of ringEndCost at their points' pixels (x, y, z indexed by point); an end
+// behind the camera scores `cap`.
+double sumRingEnds(const float* m, bool distorted, const Lens& lens, const float* x, const float* y,
+                   const float* z, const RingEndView* ends, int count, float cap);
+
 // One point's pixel as the kernels project it; false when it is behind the camera.
 bool projectPoint(const float* m, bool distorted, const Lens& lens, float x, float y, float z, float& u,
                   float& v);

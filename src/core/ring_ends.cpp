@@ -122,27 +122,25 @@ std::map<std::int32_t, int> ownRegions(const cv::Mat& regions, const std::vector
   return owner;
 }
 
-// The outline of region `region` (rows it spans): per row its outermost pixels on each side.
-PersonOutline outlineOf(const cv::Mat& regions, int region, int clearance) {
+// The outline of region `region`, whose bounding box is `box`: per row its outermost pixels on
+// each side.
+PersonOutline outlineOf(const cv::Mat& regions, int region, const cv::Rect& box, int clearance) {
   PersonOutline out;
-  int first = -1, last = -1;
-  std::vector<float> left, right;
-  for (int row = 0; row < regions.rows; ++row) {
+  out.first_row = box.y;
+  for (int row = box.y; row < box.y + box.height; ++row) {
     const int* r = regions.ptr<int>(row);
     int lo = -1, hi = -1;
-    for (int c = 0; c < regions.cols; ++c) {
+    for (int c = box.x; c < box.x + box.width; ++c) {
       if (r[c] == region) {
         if (lo < 0) lo = c;
         hi = c;
       }
     }
-    if (lo < 0) {
-      left.push_back(kNoEdge);
-      right.push_back(kNoEdge);
+    if (lo < 0) {  // a region of 8-connected pixels can skip a row only where it is diagonal
+      out.left.push_back(kNoEdge);
+      out.right.push_back(kNoEdge);
       continue;
     }
-    if (first < 0) first = row;
-    last = row;
     // Usable when the image goes on beyond it and no other region lies within `clearance`.
     const auto usable = [&](int edge, int side) {
       for (int k = 1; k <= clearance + 1; ++k) {
@@ -152,13 +150,9 @@ PersonOutline outlineOf(const cv::Mat& regions, int region, int clearance) {
       }
       return true;
     };
-    left.push_back(usable(lo, -1) ? static_cast<float>(lo) - 0.5f : kNoEdge);
-    right.push_back(usable(hi, 1) ? static_cast<float>(hi) + 0.5f : kNoEdge);
+    out.left.push_back(usable(lo, -1) ? static_cast<float>(lo) - 0.5f : kNoEdge);
+    out.right.push_back(usable(hi, 1) ? static_cast<float>(hi) + 0.5f : kNoEdge);
   }
-  if (first < 0) return out;
-  out.first_row = first;
-  out.left.assign(left.begin() + first, left.begin() + last + 1);
-  out.right.assign(right.begin() + first, right.begin() + last + 1);
   return out;
 }
 
@@ -170,7 +164,8 @@ RingEndSet assignRingEnds(const cv::Mat& mask, const std::vector<std::int32_t>& 
   RingEndSet out;
   if (ends.empty() || mask.empty() || labels.size() != pixels.size()) return out;
   cv::Mat regions;
-  cv::connectedComponents(mask != 0, regions, 8, CV_32S);
+  cv::Mat stats, centroids;
+  cv::connectedComponentsWithStats(mask != 0, regions, stats, centroids, 8, CV_32S);
   const std::map<std::int32_t, int> owner = ownRegions(regions, labels, pixels, rules.min_inside);
   std::map<int, std::uint32_t> outline_of;  // region -> index into out.outlines
   for (const RingEnd& e : ends) {
@@ -182,34 +177,20 @@ RingEndSet assignRingEnds(const cv::Mat& mask, const std::vector<std::int32_t>& 
     if (!p.allFinite() || !n.allFinite() || p.x() == n.x()) continue;
     auto known = outline_of.find(own->second);
     if (known == outline_of.end()) {
-      out.outlines.push_back(outlineOf(regions, own->second, rules.clearance_px));
+      const int k = own->second;
+      const cv::Rect box(stats.at<int>(k, cv::CC_STAT_LEFT), stats.at<int>(k, cv::CC_STAT_TOP),
+                         stats.at<int>(k, cv::CC_STAT_WIDTH), stats.at<int>(k, cv::CC_STAT_HEIGHT));
+      out.outlines.push_back(outlineOf(regions, k, box, rules.clearance_px));
       known = outline_of.emplace(own->second, static_cast<std::uint32_t>(out.outlines.size() - 1)).first;
     }
-    out.ends.push_back({e.point, e.neighbour, p.x() > n.x() ? 1 : -1, known->second});
+    out.ends.push_back({e.point, p.x() > n.x() ? 1 : -1, known->second, 0.5f * (p - n).norm()});
   }
   return out;
 }
 
-float ringEndCost(const PersonOutline& outline, int side, float u, float v, float un, float vn, float cap) {
+float ringEndCost(const PersonOutline& outline, int side, float u, float v, float half_step, float cap) {
   const std::vector<float>& edge = side > 0 ? outline.right : outline.left;
-  const float f = v - static_cast<float>(outline.first_row);
-  if (!(f >= -1.0f) || !(u == u)) return cap;
-  const long r = static_cast<long>(std::floor(f));
-  const float a = f - static_cast<float>(r);
-  const auto at = [&](long row) { return row >= 0 && row < static_cast<long>(edge.size()) ? edge[row] : kNoEdge; };
-  const float e0 = at(r);
-  const float e1 = at(r + 1);
-  float column;
-  if (std::isfinite(e0) && std::isfinite(e1)) {
-    column = e0 + a * (e1 - e0);
-  } else if (std::isfinite(e0) || std::isfinite(e1)) {
-    column = std::isfinite(e0) ? e0 : e1;
-  } else {
-    return cap;
-  }
-  const float beyond = static_cast<float>(side) * (u - column);
-  const float half_step = 0.5f * std::hypot(u - un, v - vn);
-  return std::min(std::fabs(beyond + half_step), cap);
+  return ringEndCost(edge.data(), static_cast<int>(edge.size()), outline.first_row, side, u, v, half_step, cap);
 }
 
 }  // namespace thermal_lidar_calibration

@@ -202,8 +202,10 @@ VerticalCentringOutcome centreVertically(const LossEvaluator& loss, const Extrin
   out.extrinsic = start;
   if (!config.enabled) return out;
   out.ran = true;
+  // The margin's reading alone: the stretch of poses that fit is the masks', not the ring ends'
+  // (those pull toward one pose; the calibration centres without them, so must a resample).
   const LossEvaluator with_margin =
-      loss.withPixelRule(PixelRule::kBilinear).withMargin(config.margin_px);
+      loss.withPixelRule(PixelRule::kBilinear).withMargin(config.margin_px).withoutRingEnds();
   const VerticalPlane plane(start, with_margin.centroid(pairs), with_margin.camera().fy);
   if (!(plane.pivotDepth() > 0.0)) {
     out.skipped_because = "pivot behind the camera";
@@ -276,7 +278,7 @@ VerticalCentringOutcome centreResample(const LossEvaluator& loss, const Extrinsi
   }
   const VerticalCentringConfig& config = estimate.config;
   const LossEvaluator with_margin =
-      loss.withPixelRule(PixelRule::kBilinear).withMargin(config.margin_px);
+      loss.withPixelRule(PixelRule::kBilinear).withMargin(config.margin_px).withoutRingEnds();
   const std::vector<std::size_t> fitting =
       config.pair_fit_px > 0.0 ? keepOnly(resample, estimate.fitting) : resample;
   if (fitting.empty()) {

@@ -217,12 +217,12 @@ TEST(RingEnds, EachClusterIsMeasuredAgainstItsOwnRegionNotTheUnion) {
   // Person 1's right end at u = 30 lies half a step (0.5 px) inside its own outline at 30.5:
   // no cost; against the union's outline (70.5) it would be 40 px inside.
   const PersonOutline& own = set.outlines[set.ends[1].outline];
-  EXPECT_NEAR(ringEndCost(own, 1, 30.0f, 25.0f, 29.0f, 25.0f, 3.0f), 0.0f, 1e-5f);
-  EXPECT_NEAR(ringEndCost(own, 1, 29.5f, 25.0f, 28.5f, 25.0f, 3.0f), 0.5f, 1e-5f) << "a step inside";
-  EXPECT_NEAR(ringEndCost(own, 1, 31.0f, 25.0f, 30.0f, 25.0f, 3.0f), 1.0f, 1e-5f) << "outside by 0.5 + 0.5";
-  EXPECT_NEAR(ringEndCost(own, -1, 19.5f, 25.0f, 20.5f, 25.0f, 3.0f), 0.5f, 1e-5f) << "left end on the outline";
-  EXPECT_FLOAT_EQ(ringEndCost(own, 1, 40.0f, 25.0f, 39.0f, 25.0f, 3.0f), 3.0f) << "capped";
-  EXPECT_FLOAT_EQ(ringEndCost(own, 1, 29.5f, 5.0f, 28.5f, 5.0f, 3.0f), 3.0f) << "above the person";
+  EXPECT_NEAR(ringEndCost(own, 1, 30.0f, 25.0f, 0.5f, 3.0f), 0.0f, 1e-5f);
+  EXPECT_NEAR(ringEndCost(own, 1, 29.5f, 25.0f, 0.5f, 3.0f), 0.5f, 1e-5f) << "a step inside";
+  EXPECT_NEAR(ringEndCost(own, 1, 31.0f, 25.0f, 0.5f, 3.0f), 1.0f, 1e-5f) << "outside by 0.5 + 0.5";
+  EXPECT_NEAR(ringEndCost(own, -1, 19.5f, 25.0f, 0.5f, 3.0f), 0.5f, 1e-5f) << "left end on the outline";
+  EXPECT_FLOAT_EQ(ringEndCost(own, 1, 40.0f, 25.0f, 0.5f, 3.0f), 3.0f) << "capped";
+  EXPECT_FLOAT_EQ(ringEndCost(own, 1, 29.5f, 5.0f, 0.5f, 3.0f), 3.0f) << "above the person";
 }
 
 TEST(RingEnds, TheOutlineFollowsTheRowsAndIsInterpolatedBetweenThem) {
@@ -239,7 +239,7 @@ TEST(RingEnds, TheOutlineFollowsTheRowsAndIsInterpolatedBetweenThem) {
   EXPECT_FLOAT_EQ(o.right[20 - 10], 34.5f);
   // Half way between rows 19 and 20 the outline is at 32.5; an end there with its neighbour 1 px
   // inward should lie at 32.0.
-  EXPECT_NEAR(ringEndCost(o, 1, 32.0f, 19.5f, 31.0f, 19.5f, 3.0f), 0.0f, 1e-5f);
+  EXPECT_NEAR(ringEndCost(o, 1, 32.0f, 19.5f, 0.5f, 3.0f), 0.0f, 1e-5f);
 }
 
 TEST(RingEnds, OutlinesBesideAnotherPersonOrTheImageBorderAndSharedRegionsAreLeftOut) {
@@ -280,7 +280,7 @@ TEST(RingEnds, OutlinesBesideAnotherPersonOrTheImageBorderAndSharedRegionsAreLef
   EXPECT_TRUE(std::isnan(one.right[15]));
   EXPECT_TRUE(std::isnan(two.left[15]));
   EXPECT_FLOAT_EQ(two.right[15], 22.5f);
-  EXPECT_FLOAT_EQ(ringEndCost(one, 1, 9.5f, 25.0f, 8.5f, 25.0f, 3.0f), 3.0f);
+  EXPECT_FLOAT_EQ(ringEndCost(one, 1, 9.5f, 25.0f, 0.5f, 3.0f), 3.0f);
 }
 
 TEST(RingEnds, AClusterOutsideEveryRegionHasNoEnds) {

@@ -99,6 +99,8 @@ class LossEvaluator {
   // Throws std::invalid_argument when `pairs` are not the evaluator's.
   LossEvaluator withRingEnds(const std::vector<CalibrationPair>& pairs, const Extrinsic& at, double weight,
                              const RingEndRules& rules = {}) const;
+  // The same with LossConfig::ring_end_weight 0 (shares the prepared data and the ends).
+  LossEvaluator withoutRingEnds() const;
   // Ring ends assigned over all pairs (0 without withRingEnds).
   std::size_t ringEndCount() const;
 

@@ -14,7 +14,10 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace thermal_lidar_calibration {
@@ -47,9 +50,11 @@ struct PersonOutline {
 // A ring end with the outline it belongs to.
 struct AssignedRingEnd {
   std::uint32_t point = 0;
-  std::uint32_t neighbour = 0;
   int side = 0;               // +1: the ring's rightmost point on the person in the image, -1: leftmost
   std::uint32_t outline = 0;  // index into RingEndSet::outlines
+  // Half the pixels from the end to the next point inward at assignment, where the end lies
+  // inside the outline on average (a fit moves it by far less than the spacing changes).
+  float half_step = 0.0f;
 };
 
 struct RingEndSet {
@@ -72,11 +77,32 @@ RingEndSet assignRingEnds(const cv::Mat& mask, const std::vector<std::int32_t>& 
                           const std::vector<RingEnd>& ends, const std::vector<Eigen::Vector2f>& pixels,
                           const RingEndRules& rules = {});
 
-// An end on `side` of `outline` at pixel (u, v), its neighbour at (un, vn): |s + h|, at most
-// `cap`; s its signed distance beyond the outline along the row (the outline's column
-// interpolated between the two rows around v, one row's alone where the other has none;
-// positive outside), h half its distance to the neighbour (where an end lies on average).
-// Where neither row has an outline: `cap`.
-float ringEndCost(const PersonOutline& outline, int side, float u, float v, float un, float vn, float cap);
+// An end on `side` of `outline` at pixel (u, v): |s + half_step|, at most `cap`; s its signed
+// distance beyond the outline along the row (the outline's column interpolated between the two
+// rows around v, one row's alone where the other has none; positive outside). Where neither row
+// has an outline: `cap`.
+float ringEndCost(const PersonOutline& outline, int side, float u, float v, float half_step, float cap);
+
+// The same on one side's columns (`edge[k]` for row first_row + k, `rows` of them): what the
+// loss kernels inline.
+inline float ringEndCost(const float* edge, int rows, int first_row, int side, float u, float v, float half_step,
+                         float cap) {
+  const float f = v - static_cast<float>(first_row);
+  if (!(f >= -1.0f) || !(u == u) || !(f < static_cast<float>(rows))) return cap;
+  const int r = static_cast<int>(std::floor(f));
+  const float a = f - static_cast<float>(r);
+  const float e0 = r >= 0 ? edge[r] : std::numeric_limits<float>::quiet_NaN();
+  const float e1 = r + 1 < rows ? edge[r + 1] : std::numeric_limits<float>::quiet_NaN();
+  float column;
+  if (std::isfinite(e0) && std::isfinite(e1)) {
+    column = e0 + a * (e1 - e0);
+  } else if (std::isfinite(e0) || std::isfinite(e1)) {
+    column = std::isfinite(e0) ? e0 : e1;
+  } else {
+    return cap;
+  }
+  const float beyond = static_cast<float>(side) * (u - column);
+  return std::min(std::fabs(beyond + half_step), cap);
+}
 
 }  // namespace thermal_lidar_calibration
