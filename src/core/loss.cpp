@@ -256,6 +256,7 @@ LossEvaluator LossEvaluator::withRingEnds(const std::vector<CalibrationPair>& pa
   config.validate();
   auto impl = impl_->copy();
   auto sets = std::make_shared<std::vector<RingEndSet>>(pairs.size());
+  impl->ring_ends.assign(pairs.size(), {});
   const Params m = impl->paramsOf(at);
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const PreparedPair& p = impl->pairs[i];
@@ -271,18 +272,16 @@ LossEvaluator LossEvaluator::withRingEnds(const std::vector<CalibrationPair>& pa
         pixels[k] = Eigen::Vector2f(u, v);
       }
     }
-    (*sets)[i] = assignRingEnds(pairs[i].mask, pairs[i].labels, ends, pixels, rules);
-  }
-  impl->ring_sets = sets;
-  impl->ring_ends.assign(pairs.size(), {});
-  for (std::size_t i = 0; i < pairs.size(); ++i) {
-    for (const AssignedRingEnd& e : (*sets)[i].ends) {
-      const PersonOutline& o = (*sets)[i].outlines[e.outline];
+    // The views point into (*sets)[i], which stays where it is: `sets` was sized up front.
+    const RingEndSet& set = (*sets)[i] = assignRingEnds(pairs[i].mask, pairs[i].labels, ends, pixels, rules);
+    for (const AssignedRingEnd& e : set.ends) {
+      const PersonOutline& o = set.outlines[e.outline];
       const std::vector<float>& edge = e.side > 0 ? o.right : o.left;
       impl->ring_ends[i].push_back(
           {e.point, e.side, o.first_row, static_cast<int>(edge.size()), edge.data(), e.half_step});
     }
   }
+  impl->ring_sets = sets;
   return LossEvaluator(camera_, config, impl);
 }
 
