@@ -42,6 +42,63 @@ kernels::Points pointsOf(const PreparedPair& p) {
   return {p.x.data(), p.y.data(), p.z.data(), static_cast<int>(p.count)};
 }
 
+// A pair's assigned ring ends laid out for kernels::sumRingEnds: one array per field, padded to
+// a multiple of kPointBlock, and the outlines' columns in one array (left then right side of
+// each outline), so the vector kernel gathers both. The ends' points are copied per evaluator
+// (RingEndPoints): a time offset moves them.
+struct PackedRingEnds {
+  std::vector<std::int32_t> point, rows, offset;
+  std::vector<float> side, first_row, half_step, edges;
+  int count = 0;
+
+  PackedRingEnds() = default;
+  explicit PackedRingEnds(const RingEndSet& set) {
+    std::vector<std::int32_t> starts;  // per outline, where its left side starts; the right follows
+    for (const PersonOutline& o : set.outlines) {
+      starts.push_back(static_cast<std::int32_t>(edges.size()));
+      edges.insert(edges.end(), o.left.begin(), o.left.end());
+      edges.insert(edges.end(), o.right.begin(), o.right.end());
+    }
+    for (const AssignedRingEnd& e : set.ends) {
+      const PersonOutline& o = set.outlines[e.outline];
+      const auto left = static_cast<std::int32_t>(o.left.size());
+      point.push_back(static_cast<std::int32_t>(e.point));
+      side.push_back(static_cast<float>(e.side));
+      first_row.push_back(static_cast<float>(o.first_row));
+      rows.push_back(e.side > 0 ? static_cast<std::int32_t>(o.right.size()) : left);
+      offset.push_back(starts[e.outline] + (e.side > 0 ? left : 0));
+      half_step.push_back(e.half_step);
+    }
+    count = static_cast<int>(point.size());
+    // Padding lanes: point 0, no rows (so no gather), masked out of the sum.
+    const std::size_t padded = (point.size() + kernels::kPointBlock - 1) / kernels::kPointBlock * kernels::kPointBlock;
+    point.resize(padded, 0);
+    rows.resize(padded, 0);
+    offset.resize(padded, 0);
+    side.resize(padded, 1.0f);
+    first_row.resize(padded, 0.0f);
+    half_step.resize(padded, 0.0f);
+  }
+};
+
+// The ends' points of one pair, as PackedRingEnds::point indexes them, where the pair has them.
+struct RingEndPoints {
+  std::vector<float> x, y, z;
+  RingEndPoints() = default;
+  RingEndPoints(const PackedRingEnds& ends, const PreparedPair& pair) {
+    for (const std::int32_t k : ends.point) {
+      x.push_back(pair.x[static_cast<std::size_t>(k)]);
+      y.push_back(pair.y[static_cast<std::size_t>(k)]);
+      z.push_back(pair.z[static_cast<std::size_t>(k)]);
+    }
+  }
+};
+
+kernels::RingEnds viewOf(const PackedRingEnds& e, const RingEndPoints& p) {
+  return {p.x.data(),        p.y.data(),      p.z.data(),         e.side.data(), e.first_row.data(),
+          e.rows.data(),     e.offset.data(), e.half_step.data(), e.edges.data(), e.count};
+}
+
 }  // namespace
 
 PreparedPair::PreparedPair(const CalibrationPair& pair, std::optional<double> time_offset_s)
@@ -107,10 +164,9 @@ struct LossEvaluator::Impl {
   bool distorted = false;
   float penalty = 0.0f;
   Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
-  // Per pair, the ring ends (withRingEnds; empty without) and the views the kernel reads, which
-  // point into the shared sets.
-  std::shared_ptr<const std::vector<RingEndSet>> ring_sets;
-  std::vector<std::vector<kernels::RingEndView>> ring_ends;
+  // Per pair, the ring ends (withRingEnds; null without), shared by the copies, and their points.
+  std::shared_ptr<const std::vector<PackedRingEnds>> ring_ends;
+  std::vector<RingEndPoints> ring_points;
   mutable std::atomic<std::uint64_t> points{0};
 
   // The same pairs (points copied, distance maps shared), lens and ring ends; its own count.
@@ -121,8 +177,8 @@ struct LossEvaluator::Impl {
     out->distorted = distorted;
     out->penalty = penalty;
     out->K = K;
-    out->ring_sets = ring_sets;
     out->ring_ends = ring_ends;
+    out->ring_points = ring_points;
     return out;
   }
 
@@ -147,10 +203,10 @@ struct LossEvaluator::Impl {
     const float sum = kernels::sumPsi(m.data(), distorted, rule == PixelRule::kBilinear, lens, pts,
                                       map, penalty, margin);
     const double mean = static_cast<double>(sum) / static_cast<double>(pair.count);
-    if (rule != PixelRule::kBilinear || !(ring_weight > 0.0) || ring_ends.empty() || ring_ends[i].empty()) {
+    if (rule != PixelRule::kBilinear || !(ring_weight > 0.0) || !ring_ends || (*ring_ends)[i].count == 0) {
       return mean;
     }
-    return mean + ring_weight * ringEndCost(m, pair, ring_ends[i]);
+    return mean + ring_weight * ringEndCost(m, (*ring_ends)[i], ring_points[i]);
   }
   double pairLoss(const Params& m, std::size_t i, PixelRule rule, float margin, double ring_weight) const {
     const PreparedPair& pair = pairs[i];
@@ -158,10 +214,17 @@ struct LossEvaluator::Impl {
   }
 
   // The mean ringEndCost over the pair's assigned ends; an end behind the camera costs the cap.
-  double ringEndCost(const Params& m, const PreparedPair& pair, const std::vector<kernels::RingEndView>& ends) const {
-    return kernels::sumRingEnds(m.data(), distorted, lens, pair.x.data(), pair.y.data(), pair.z.data(), ends.data(),
-                                static_cast<int>(ends.size()), LossConfig::kRingEndCapPx) /
-           static_cast<double>(ends.size());
+  double ringEndCost(const Params& m, const PackedRingEnds& ends, const RingEndPoints& points) const {
+    return static_cast<double>(
+               kernels::sumRingEnds(m.data(), distorted, lens, viewOf(ends, points), LossConfig::kRingEndCapPx)) /
+           static_cast<double>(ends.count);
+  }
+
+  // The ends' points taken again from the pairs (after they moved to another time offset).
+  void placeRingEnds() {
+    ring_points.assign(pairs.size(), {});
+    if (!ring_ends) return;
+    for (std::size_t i = 0; i < pairs.size(); ++i) ring_points[i] = RingEndPoints((*ring_ends)[i], pairs[i]);
   }
 };
 
@@ -222,6 +285,7 @@ LossEvaluator LossEvaluator::withTimeOffset(double time_offset_s) const {
   config.time_offset_s = time_offset_s;
   auto impl = impl_->copy();
   for (PreparedPair& pair : impl->pairs) pair.moveTo(time_offset_s);
+  if (impl->ring_ends) impl->placeRingEnds();
   return LossEvaluator(camera_, config, impl);
 }
 
@@ -255,8 +319,7 @@ LossEvaluator LossEvaluator::withRingEnds(const std::vector<CalibrationPair>& pa
   config.ring_end_weight = weight;
   config.validate();
   auto impl = impl_->copy();
-  auto sets = std::make_shared<std::vector<RingEndSet>>(pairs.size());
-  impl->ring_ends.assign(pairs.size(), {});
+  auto packed = std::make_shared<std::vector<PackedRingEnds>>(pairs.size());
   const Params m = impl->paramsOf(at);
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const PreparedPair& p = impl->pairs[i];
@@ -272,16 +335,10 @@ LossEvaluator LossEvaluator::withRingEnds(const std::vector<CalibrationPair>& pa
         pixels[k] = Eigen::Vector2f(u, v);
       }
     }
-    // The views point into (*sets)[i], which stays where it is: `sets` was sized up front.
-    const RingEndSet& set = (*sets)[i] = assignRingEnds(pairs[i].mask, pairs[i].labels, ends, pixels, rules);
-    for (const AssignedRingEnd& e : set.ends) {
-      const PersonOutline& o = set.outlines[e.outline];
-      const std::vector<float>& edge = e.side > 0 ? o.right : o.left;
-      impl->ring_ends[i].push_back(
-          {e.point, e.side, o.first_row, static_cast<int>(edge.size()), edge.data(), e.half_step});
-    }
+    (*packed)[i] = PackedRingEnds(assignRingEnds(pairs[i].mask, pairs[i].labels, ends, pixels, rules));
   }
-  impl->ring_sets = sets;
+  impl->ring_ends = packed;
+  impl->placeRingEnds();
   return LossEvaluator(camera_, config, impl);
 }
 
@@ -293,7 +350,9 @@ LossEvaluator LossEvaluator::withoutRingEnds() const {
 
 std::size_t LossEvaluator::ringEndCount() const {
   std::size_t n = 0;
-  for (const auto& ends : impl_->ring_ends) n += ends.size();
+  if (impl_->ring_ends) {
+    for (const PackedRingEnds& ends : *impl_->ring_ends) n += static_cast<std::size_t>(ends.count);
+  }
   return n;
 }
 

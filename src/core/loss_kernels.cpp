@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define TLC_HAVE_AVX2_PATH 1
@@ -387,25 +388,80 @@ bool atLeastInside(const float* m, bool distorted, const Lens& lens, const Point
 namespace {
 
 template <bool kDistorted>
-double sumRingEndsImpl(const float* m, const Lens& lens, const float* x, const float* y, const float* z,
-                       const RingEndView* ends, int count, float cap) {
-  double sum = 0.0;
-  for (int i = 0; i < count; ++i) {
-    const RingEndView& e = ends[i];
+float sumRingEndsScalarImpl(const float* m, const Lens& lens, const RingEnds& e, float cap) {
+  float sum = 0.0f;
+  for (int i = 0; i < e.count; ++i) {
     float u, v;
-    sum += projectScalar<kDistorted>(m, lens, x[e.point], y[e.point], z[e.point], u, v)
-               ? ringEndCost(e.edge, e.rows, e.first_row, e.side, u, v, e.half_step, cap)
+    sum += projectScalar<kDistorted>(m, lens, e.x[i], e.y[i], e.z[i], u, v)
+               ? ringEndCost(e.edges + e.offset[i], e.rows[i], static_cast<int>(e.first_row[i]),
+                             static_cast<int>(e.side[i]), u, v, e.half_step[i], cap)
                : cap;
   }
   return sum;
 }
 
+#if TLC_HAVE_AVX2_PATH
+// ringEndCost on 8 ends at a time: the outline's two rows around each end gathered from the
+// pair's columns (masked where a row lies outside the outline).
+// Same operations in the same order as the scalar code, lane by lane.
+template <bool kDistorted>
+TLC_AVX2 float sumRingEndsAvx2(const float* mp, const Lens& lens, const RingEnds& e, float cap) {
+  __m256 m[12];
+  for (int k = 0; k < 12; ++k) m[k] = _mm256_set1_ps(mp[k]);
+  const __m256 one = _mm256_set1_ps(1.0f), minus_one = _mm256_set1_ps(-1.0f), zero = _mm256_setzero_ps();
+  const __m256 cap8 = _mm256_set1_ps(cap), nan = _mm256_set1_ps(std::numeric_limits<float>::quiet_NaN());
+  const __m256 abs_mask = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
+  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  __m256 acc = zero;
+  for (int i = 0; i < e.count; i += 8) {
+    const Avx2Projection q = projectAvx2<kDistorted>(m, lens, _mm256_loadu_ps(e.x + i), _mm256_loadu_ps(e.y + i),
+                                                     _mm256_loadu_ps(e.z + i));
+    const __m256 rows = _mm256_cvtepi32_ps(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(e.rows + i)));
+    const __m256 f = _mm256_sub_ps(q.v, _mm256_loadu_ps(e.first_row + i));
+    __m256 ok = _mm256_and_ps(q.front, _mm256_cmp_ps(f, minus_one, _CMP_GE_OQ));
+    ok = _mm256_and_ps(ok, _mm256_cmp_ps(f, rows, _CMP_LT_OQ));
+    ok = _mm256_and_ps(ok, _mm256_cmp_ps(q.u, q.u, _CMP_ORD_Q));
+    // Clamped so that lanes left out still convert to a small index (max_ps returns -1 for NaN).
+    // On the lanes kept it changes only the last row's weight, where the row below is not read.
+    const __m256 fc = _mm256_min_ps(_mm256_max_ps(f, minus_one), _mm256_sub_ps(rows, one));
+    const __m256 r = _mm256_floor_ps(fc);
+    const __m256 a = _mm256_sub_ps(fc, r);
+    const __m256i at = _mm256_add_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(e.offset + i)),
+                                        _mm256_cvttps_epi32(r));
+    const __m256 has0 = _mm256_and_ps(ok, _mm256_cmp_ps(r, zero, _CMP_GE_OQ));
+    const __m256 has1 = _mm256_and_ps(ok, _mm256_cmp_ps(_mm256_add_ps(r, one), rows, _CMP_LT_OQ));
+    const __m256 e0 = _mm256_mask_i32gather_ps(nan, e.edges, at, has0, 4);
+    const __m256 e1 = _mm256_mask_i32gather_ps(nan, e.edges + 1, at, has1, 4);
+    const __m256 fin0 = _mm256_cmp_ps(e0, e0, _CMP_ORD_Q), fin1 = _mm256_cmp_ps(e1, e1, _CMP_ORD_Q);
+    const __m256 between = _mm256_add_ps(e0, _mm256_mul_ps(a, _mm256_sub_ps(e1, e0)));
+    const __m256 column = _mm256_blendv_ps(_mm256_blendv_ps(e1, e0, fin0), between, _mm256_and_ps(fin0, fin1));
+    const __m256 beyond = _mm256_mul_ps(_mm256_loadu_ps(e.side + i), _mm256_sub_ps(q.u, column));
+    const __m256 cost = _mm256_min_ps(
+        _mm256_and_ps(_mm256_add_ps(beyond, _mm256_loadu_ps(e.half_step + i)), abs_mask), cap8);
+    __m256 term = _mm256_blendv_ps(cap8, cost, _mm256_and_ps(ok, _mm256_or_ps(fin0, fin1)));
+    if (i + 8 > e.count) {
+      term = _mm256_and_ps(term, _mm256_castsi256_ps(_mm256_cmpgt_epi32(_mm256_set1_epi32(e.count - i), lane)));
+    }
+    acc = _mm256_add_ps(acc, term);
+  }
+  return horizontalSum(acc);
+}
+#endif
+
 }  // namespace
 
-double sumRingEnds(const float* m, bool distorted, const Lens& lens, const float* x, const float* y,
-                   const float* z, const RingEndView* ends, int count, float cap) {
-  return distorted ? sumRingEndsImpl<true>(m, lens, x, y, z, ends, count, cap)
-                   : sumRingEndsImpl<false>(m, kNoLens, x, y, z, ends, count, cap);
+float sumRingEnds(const float* m, bool distorted, const Lens& lens, const RingEnds& ends, float cap) {
+#if TLC_HAVE_AVX2_PATH
+  if (cpuHasAvx2()) {
+    return distorted ? sumRingEndsAvx2<true>(m, lens, ends, cap) : sumRingEndsAvx2<false>(m, kNoLens, ends, cap);
+  }
+#endif
+  return sumRingEndsScalar(m, distorted, lens, ends, cap);
+}
+
+float sumRingEndsScalar(const float* m, bool distorted, const Lens& lens, const RingEnds& ends, float cap) {
+  return distorted ? sumRingEndsScalarImpl<true>(m, lens, ends, cap)
+                   : sumRingEndsScalarImpl<false>(m, kNoLens, ends, cap);
 }
 
 bool projectPoint(const float* m, bool distorted, const Lens& lens, float x, float y, float z, float& u,

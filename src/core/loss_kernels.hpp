@@ -49,21 +49,29 @@ float sumPsiScalar(const float* m, bool distorted, bool bilinear, const Lens& le
 int countInsideScalar(const float* m, bool distorted, const Lens& lens, const Points& p,
                       int width, int height);
 
-// One ring end as sumRingEnds reads it (ring_ends.hpp): its point's index, its outline's columns
-// on its side (`edge[k]` for image row first_row + k), where it lies inside on average.
-struct RingEndView {
-  std::uint32_t point;
-  int side;
-  int first_row;
-  int rows;
-  const float* edge;
-  float half_step;
+// A pair's ring ends as sumRingEnds reads them (ring_ends.hpp), one array per field, each
+// readable up to `count` rounded up to a multiple of kPointBlock (the padding lanes are masked
+// out): the end's point (a copy of the pair's, so the vector code loads rather than gathers it),
+// its side (+1 / -1), the image row of its outline's first column, how many rows the outline has,
+// where its columns start in `edges` (all the pair's outline columns, NaN where a row has none),
+// and where the end lies inside on average.
+struct RingEnds {
+  const float* x;
+  const float* y;
+  const float* z;
+  const float* side;
+  const float* first_row;
+  const std::int32_t* rows;
+  const std::int32_t* offset;
+  const float* half_step;
+  const float* edges;
+  int count;
 };
 
-// Sum over the ends of ringEndCost at their points' pixels (x, y, z indexed by point); an end
-// behind the camera scores `cap`.
-double sumRingEnds(const float* m, bool distorted, const Lens& lens, const float* x, const float* y,
-                   const float* z, const RingEndView* ends, int count, float cap);
+// Sum over the ends of ringEndCost at their points' pixels; an end behind the camera scores `cap`.
+float sumRingEnds(const float* m, bool distorted, const Lens& lens, const RingEnds& ends, float cap);
+// The portable version sumRingEnds falls back to without AVX2+FMA (for tests, as sumPsiScalar).
+float sumRingEndsScalar(const float* m, bool distorted, const Lens& lens, const RingEnds& ends, float cap);
 
 // One point's pixel as the kernels project it; false when it is behind the camera.
 bool projectPoint(const float* m, bool distorted, const Lens& lens, float x, float y, float z, float& u,

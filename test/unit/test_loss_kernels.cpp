@@ -3,6 +3,7 @@
 
 #include "thermal_lidar_calibration/core/distance_map.hpp"
 #include "thermal_lidar_calibration/core/random.hpp"
+#include "thermal_lidar_calibration/core/ring_ends.hpp"
 
 #include <gtest/gtest.h>
 
@@ -139,5 +140,97 @@ TEST(LossKernels, ProjectionsAtTheCameraPlaneCostTheCapOrThePenaltyInEveryKernel
         EXPECT_EQ(kernels::countInsideScalar(m, distorted, lens, one, 640, 512), 0);
       }
     }
+  }
+}
+
+TEST(LossKernels, RingEndKernelsAgreeWithRingEndCostEndByEnd) {
+  // Ends at random points, each with an outline of random rows around where it projects (some
+  // rows without a column, some ends beyond the outline's rows or behind the camera); 203 ends,
+  // so the padded tail is covered. Each end's cost from the portable and the dispatched kernel
+  // against ringEndCost on the same pixel; their sums against the sum of the ends.
+  const KernelData d;
+  const float m[12] = {0.99f, 0.01f, -0.02f, 0.1f, -0.01f, 0.98f, 0.05f, -0.2f, 0.02f, -0.05f, 0.99f, 0.3f};
+  const float pinhole[12] = {772, 0, 322, 0, 0, 772, 250, 0, 0, 0, 1, 0};
+  const kernels::Lens lens{772.41f, 772.83f, 322.67f, 250.66f, 0.0f, -0.0496f, 0.3632f, 0.001f, -0.002f, 0.01f};
+  const float cap = 3.0f;
+  Rng rng(4);
+  for (int distorted = 0; distorted < 2; ++distorted) {
+    SCOPED_TRACE(distorted ? "distorted" : "pinhole");
+    const float* mp = distorted ? m : pinhole;
+    std::vector<std::int32_t> rows, offset;
+    std::vector<float> x, y, z, side, first_row, half_step, edges, expected;
+    int cap_ends = 0, inside_ends = 0;
+    for (int i = 0; i < 203; ++i) {
+      // Points behind the camera or near the image (far off it, float rounding reaches 0.01 px).
+      int k = 0;
+      float u = 0.0f, v = 0.0f;
+      bool front = false;
+      do {
+        k = int(rng.uniform(0, d.count - 1e-9));
+        front = kernels::projectPoint(mp, distorted, lens, d.x[k], d.y[k], d.z[k], u, v);
+      } while (front && !(u > -50.0f && u < 690.0f && v > -50.0f && v < 562.0f));
+      PersonOutline o;
+      const int n = int(rng.uniform(0, 40));
+      o.first_row = int(std::floor(v)) - int(rng.uniform(-10, 30));
+      for (int r = 0; r < n; ++r) {
+        const bool none = rng.uniform(0, 1) < 0.2;
+        o.left.push_back(none ? std::nanf("") : u + float(rng.uniform(-2, 2)));  // within the cap
+      }
+      o.right = o.left;
+      const int s = rng.uniform(0, 1) < 0.5 ? -1 : 1;
+      const float h = float(rng.uniform(0, 1));
+      x.push_back(d.x[k]);
+      y.push_back(d.y[k]);
+      z.push_back(d.z[k]);
+      side.push_back(float(s));
+      first_row.push_back(float(o.first_row));
+      rows.push_back(n);
+      offset.push_back(std::int32_t(edges.size()));
+      half_step.push_back(h);
+      edges.insert(edges.end(), o.left.begin(), o.left.end());
+      const float cost = front ? ringEndCost(o, s, u, v, h, cap) : cap;
+      expected.push_back(cost);
+      (cost == cap ? cap_ends : inside_ends) += 1;
+    }
+    ASSERT_GT(cap_ends, 10);  // both kinds of end are exercised
+    ASSERT_GT(inside_ends, 50);
+    const int count = int(x.size());
+    x.resize(208, 0.0f);
+    y.resize(208, 0.0f);
+    z.resize(208, 0.0f);
+    rows.resize(208, 0);
+    offset.resize(208, 0);
+    side.resize(208, 1.0f);
+    first_row.resize(208, 0.0f);
+    half_step.resize(208, 0.0f);
+    double total = 0.0, vector_total = 0.0;
+    for (int i = 0; i < count; ++i) {
+      // One end at a time: its fields copied into arrays of one block.
+      std::vector<std::int32_t> r1(8, 0), o1(8, 0);
+      std::vector<float> x1(8, 0.0f), y1(8, 0.0f), z1(8, 0.0f), s1(8, 1.0f), f1(8, 0.0f), h1(8, 0.0f);
+      x1[0] = x[i], y1[0] = y[i], z1[0] = z[i];
+      r1[0] = rows[i], o1[0] = offset[i], s1[0] = side[i], f1[0] = first_row[i], h1[0] = half_step[i];
+      const kernels::RingEnds one{x1.data(), y1.data(), z1.data(), s1.data(), f1.data(), r1.data(),
+                                  o1.data(),  h1.data(), edges.data(), 1};
+      SCOPED_TRACE("end " + std::to_string(i));
+      // The vector projection rounds differently (FMA): near a row boundary with a missing row the
+      // outline jumps, so compare only ends more than 0.01 px from one.
+      float u, v;
+      kernels::projectPoint(mp, distorted, lens, x[i], y[i], z[i], u, v);
+      const bool at_boundary = std::fabs(v - std::round(v)) < 0.01f;
+      EXPECT_FLOAT_EQ(kernels::sumRingEndsScalar(mp, distorted, lens, one, cap),
+                      expected[i]);
+      const float vector = kernels::sumRingEnds(mp, distorted, lens, one, cap);
+      if (!at_boundary) EXPECT_NEAR(vector, expected[i], 1e-3);
+      total += expected[i];
+      vector_total += vector;
+    }
+    const kernels::RingEnds all{x.data(),      y.data(),         z.data(),     side.data(), first_row.data(),
+                                rows.data(), offset.data(), half_step.data(), edges.data(), count};
+    EXPECT_NEAR(kernels::sumRingEndsScalar(mp, distorted, lens, all, cap), total,
+                1e-3);
+    // All ends at once: the same as one at a time (the padding lanes add nothing).
+    EXPECT_NEAR(kernels::sumRingEnds(mp, distorted, lens, all, cap),
+                vector_total, 1e-3);
   }
 }

@@ -5,6 +5,7 @@
 #include "thermal_lidar_calibration/core/calibrator.hpp"
 #include "thermal_lidar_calibration/core/loss.hpp"
 #include "thermal_lidar_calibration/core/local_refinement.hpp"
+#include "thermal_lidar_calibration/core/person_timing.hpp"
 #include "thermal_lidar_calibration/core/pose_difference.hpp"
 #include "thermal_lidar_calibration/core/random.hpp"
 #include "thermal_lidar_calibration/core/ring_ends.hpp"
@@ -151,6 +152,33 @@ TEST(RingEnds, TheTermIsZeroForEndsHalfAStepInsideTheOutlineAndGrowsEitherWay) {
   EXPECT_GT(loss.pairLoss(0, farther), 0.5);
   EXPECT_GT(loss.pairLoss(0, nearer), 0.5);
   EXPECT_NEAR(loss.withPixelRule(PixelRule::kNearest).pairLoss(0, farther), 0.0, 1e-6) << "the paper's rule";
+}
+
+TEST(RingEnds, TheEndsMoveWithTheirPersonToAnotherTimeOffset) {
+  // The person of the test above walking right at 1 m/s, 1 m ahead: 2 px in 20 ms. At offset 0
+  // its ends lie half a step inside; at +20 ms both are 2 px off (one beyond its outline, one
+  // inside by 2.5 px), so the ring-end term is 2 px whatever the mask loss does.
+  const CameraModel camera = CameraModel::fromK(100, 80, {100, 0, 50, 0, 100, 40, 0, 0, 1}, {});
+  CalibrationPair pair;
+  pair.mask = cv::Mat::zeros(80, 100, CV_8UC1);
+  pair.mask(cv::Rect(40, 30, 21, 21)).setTo(1);
+  for (int k = 0; k <= 20; ++k) {
+    pair.points.emplace_back(1.0f, static_cast<float>(-(40.0 + k - 50.0) / 100.0), 0.0f);
+    pair.labels.push_back(1);
+  }
+  PersonMotion walker;
+  walker.label = 1;
+  walker.velocity_mps = Eigen::Vector3d(0, -1, 0);  // LiDAR -y: the image's +u
+  walker.scans = 3;
+  attachMotion(pair, {walker});
+  const std::vector<CalibrationPair> pairs{pair};
+  const LossEvaluator plain(camera, pairs, LossConfig{5.0, PixelRule::kBilinear, 0.0});
+  const Extrinsic at = lidarToCamera();
+  const LossEvaluator loss = plain.withRingEnds(pairs, at, 1.0);
+  EXPECT_NEAR(loss.pairLoss(0, at) - plain.pairLoss(0, at), 0.0, 1e-5);
+  const double moved = loss.withTimeOffset(0.02).pairLoss(0, at) - plain.withTimeOffset(0.02).pairLoss(0, at);
+  EXPECT_NEAR(moved, 2.0, 1e-3);
+  EXPECT_NEAR(loss.withTimeOffset(0.02).withTimeOffset(0.0).pairLoss(0, at) - plain.pairLoss(0, at), 0.0, 1e-5);
 }
 
 TEST(RingEnds, WithMasksErodedOrDilatedTheEndsTakeOutTheForwardLean) {
