@@ -104,6 +104,36 @@ TEST(ResultFile, HasEveryInterfaceKeyAndRoundTrips) {
   EXPECT_LT((back.translation - r.extrinsic.translation).norm(), 1e-12);
 }
 
+TEST(ResultFile, SaysWhetherTheVerticalCentringMovedTheEstimate) {
+  const std::string dir = tempDir();
+  tlc::CalibrationResult r = sampleResult();
+  writeResultFile(dir + "/paper.yaml", r, ResultContext{});
+  EXPECT_FALSE(YAML::LoadFile(dir + "/paper.yaml")["vertical_centring"]) << "not run: no key";
+
+  r.vertical_centring.ran = true;
+  r.vertical_centring.applied = true;
+  r.vertical_centring.skipped_because = "";
+  r.vertical_centring.shift_rotation_px = 1.25;
+  r.vertical_centring.shift_translation_px = -0.5;
+  r.vertical_centring.fitting = {0, 2};
+  writeResultFile(dir + "/applied.yaml", r, ResultContext{});
+  const YAML::Node applied = YAML::LoadFile(dir + "/applied.yaml")["vertical_centring"];
+  ASSERT_TRUE(applied);
+  EXPECT_TRUE(applied["applied"].as<bool>());
+  EXPECT_FALSE(applied["skipped_because"]);
+  EXPECT_DOUBLE_EQ(applied["moved_px"][0].as<double>(), 1.25);
+  EXPECT_DOUBLE_EQ(applied["moved_px"][1].as<double>(), -0.5);
+  EXPECT_EQ(applied["fitting_pairs"].as<int>(), 2);
+
+  r.vertical_centring.applied = false;
+  r.vertical_centring.skipped_because = "too few pairs fit within the margin";
+  r.vertical_centring.shift_rotation_px = r.vertical_centring.shift_translation_px = 0.0;
+  writeResultFile(dir + "/skipped.yaml", r, ResultContext{});
+  const YAML::Node skipped = YAML::LoadFile(dir + "/skipped.yaml")["vertical_centring"];
+  EXPECT_FALSE(skipped["applied"].as<bool>());
+  EXPECT_EQ(skipped["skipped_because"].as<std::string>(), "too few pairs fit within the margin");
+}
+
 TEST(ResultFile, ReadsRotationMatrixOnlyFiles) {
   const std::string path = tempDir() + "/truth.yaml";
   tlc::Extrinsic e;

@@ -142,6 +142,17 @@ void emitRun(YAML::Emitter& out, const CalibrationResult& result, const ResultCo
   }
   // The rings' ends the refinement read against their people's own outlines (ring_ends.hpp).
   if (result.ring_ends > 0) out << YAML::Key << "ring_ends" << YAML::Value << result.ring_ends;
+  // Whether the vertical centring (vertical_centring.hpp) moved the estimate, how far, and why not.
+  const VerticalCentringOutcome& centring = result.vertical_centring;
+  if (centring.ran) {
+    out << YAML::Key << "vertical_centring" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "applied" << YAML::Value << centring.applied;
+    if (!centring.applied) out << YAML::Key << "skipped_because" << YAML::Value << centring.skipped_because;
+    out << YAML::Key << "moved_px" << YAML::Value << YAML::Flow << YAML::BeginSeq << centring.shift_rotation_px
+        << centring.shift_translation_px << YAML::EndSeq;
+    out << YAML::Key << "fitting_pairs" << YAML::Value << centring.fitting.size();
+    out << YAML::EndMap;
+  }
 
   out << YAML::Key << "algorithm" << YAML::Value
       << (context.parameters.calibration.algorithm == Algorithm::kPlain ? 1 : 2);
