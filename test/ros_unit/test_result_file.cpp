@@ -115,6 +115,7 @@ TEST(ResultFile, SaysWhetherTheVerticalCentringMovedTheEstimate) {
   r.vertical_centring.skipped_because = "";
   r.vertical_centring.shift_rotation_px = 1.25;
   r.vertical_centring.shift_translation_px = -0.5;
+  r.vertical_centring.shift_roll_px = 0.75;
   r.vertical_centring.fitting = {0, 2};
   writeResultFile(dir + "/applied.yaml", r, ResultContext{});
   const YAML::Node applied = YAML::LoadFile(dir + "/applied.yaml")["vertical_centring"];
@@ -123,11 +124,13 @@ TEST(ResultFile, SaysWhetherTheVerticalCentringMovedTheEstimate) {
   EXPECT_FALSE(applied["skipped_because"]);
   EXPECT_DOUBLE_EQ(applied["moved_px"][0].as<double>(), 1.25);
   EXPECT_DOUBLE_EQ(applied["moved_px"][1].as<double>(), -0.5);
+  EXPECT_DOUBLE_EQ(applied["moved_px"][2].as<double>(), 0.75);
   EXPECT_EQ(applied["fitting_pairs"].as<int>(), 2);
 
   r.vertical_centring.applied = false;
   r.vertical_centring.skipped_because = "too few pairs fit within the margin";
   r.vertical_centring.shift_rotation_px = r.vertical_centring.shift_translation_px = 0.0;
+  r.vertical_centring.shift_roll_px = 0.0;
   writeResultFile(dir + "/skipped.yaml", r, ResultContext{});
   const YAML::Node skipped = YAML::LoadFile(dir + "/skipped.yaml")["vertical_centring"];
   EXPECT_FALSE(skipped["applied"].as<bool>());

@@ -179,7 +179,9 @@ TEST(VerticalCentring, MovesOnlyTheRotationAboutCameraXAndTheTranslationAlongY) 
   std::iota(all.begin(), all.end(), std::size_t{0});
   Extrinsic start = scene.truth;
   start.translation.y() += 0.03;  // 3 cm low: inside the stretch, off its centre
-  const VerticalCentringOutcome out = centreVertically(loss, start, all, VerticalCentringConfig{}, 1);
+  VerticalCentringConfig plane_only;
+  plane_only.centre_roll = false;  // the roll's own step is the next test's
+  const VerticalCentringOutcome out = centreVertically(loss, start, all, plane_only, 1);
   ASSERT_TRUE(out.applied) << out.skipped_because;
   const PoseDifference moved = poseDifference(out.extrinsic, start);
   EXPECT_GT(std::abs(moved.translation_cm.y()) + std::abs(moved.rotation_deg.x()), 0.5);
@@ -190,6 +192,39 @@ TEST(VerticalCentring, MovesOnlyTheRotationAboutCameraXAndTheTranslationAlongY) 
   // by the turn times the centroid's height in the image, here well under a millimetre.
   EXPECT_LT(std::abs(moved.translation_cm.z()), 0.1);
   EXPECT_LT(largestMagnitude(verticalOffsets(scene, out.extrinsic)), 1.0);
+}
+
+// A roll (a turn of the camera about its own axis) moves the people on the image's left and
+// right up and down against each other, inside the same flat stretch, and the stretch in the
+// plane depends on it: started rolled 0.15 deg (0.8 px at the image's side edges), the plane
+// alone keeps the roll and moves every person up to 3.2 px off (measured); the centring over the
+// turn, the shift and the roll together brings all three back (roll 0.001 deg, 0.4 px measured).
+TEST(VerticalCentring, TheRollIsCentredWithThePlane) {
+  const RingGapScene scene = makeRingGapScene(12);
+  const LossEvaluator loss(scene.camera, scene.pairs, LossConfig{5.0, PixelRule::kBilinear});
+  std::vector<std::size_t> all(scene.pairs.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  const double roll_rad = 0.15 * M_PI / 180.0;
+  const Eigen::Matrix3d D = Eigen::AngleAxisd(roll_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Extrinsic start =
+      Extrinsic::fromRotationMatrix(D * scene.truth.rotationMatrix(), D * scene.truth.translation);
+  const double before = poseDifference(start, scene.truth).rotation_deg.z();
+  ASSERT_NEAR(before, 0.15, 1e-6);
+  VerticalCentringConfig plane_only;
+  plane_only.centre_roll = false;
+  const VerticalCentringOutcome plane = centreVertically(loss, start, all, plane_only, 1);
+  ASSERT_TRUE(plane.applied) << plane.skipped_because;
+  EXPECT_NEAR(poseDifference(plane.extrinsic, scene.truth).rotation_deg.z(), before, 1e-5) << "the plane keeps it";
+  EXPECT_GT(largestMagnitude(verticalOffsets(scene, plane.extrinsic)), 2.0);
+  const VerticalCentringOutcome out = centreVertically(loss, start, all, VerticalCentringConfig{}, 1);
+  ASSERT_TRUE(out.applied) << out.skipped_because;
+  EXPECT_LT(std::abs(poseDifference(out.extrinsic, scene.truth).rotation_deg.z()), 0.1 * before);
+  EXPECT_NEAR(out.shift_roll_px, -0.5 * scene.camera.width * roll_rad, 0.1 * 0.5 * scene.camera.width * roll_rad);
+  EXPECT_LT(largestMagnitude(verticalOffsets(scene, out.extrinsic)), 1.0);
+  // Nothing else moves: about camera y and across the image.
+  const PoseDifference moved = poseDifference(out.extrinsic, start);
+  EXPECT_LT(std::abs(moved.rotation_deg.y()), 1e-3);
+  EXPECT_LT(std::abs(moved.translation_cm.x()), 0.05);
 }
 
 TEST(VerticalCentring, SameResultWithAnyThreadCount) {

@@ -119,6 +119,8 @@ struct VerticalCentringConfig {
   int iterations = 3;              // outline traced again from each new centre
   int resample_rays = 8;           // the bootstrap's resamples: fewer directions,
   int resample_bisections = 4;     // a coarser outline, traced once (centreResample)
+  bool centre_roll = true;         // the region over the roll too (about camera z through the
+                                   // camera); false: the plane's two only
   static const ParameterRanges<VerticalCentringConfig>& ranges();  // checked by validate()
   void validate() const;
 };

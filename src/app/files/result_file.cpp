@@ -149,7 +149,7 @@ void emitRun(YAML::Emitter& out, const CalibrationResult& result, const ResultCo
     out << YAML::Key << "applied" << YAML::Value << centring.applied;
     if (!centring.applied) out << YAML::Key << "skipped_because" << YAML::Value << centring.skipped_because;
     out << YAML::Key << "moved_px" << YAML::Value << YAML::Flow << YAML::BeginSeq << centring.shift_rotation_px
-        << centring.shift_translation_px << YAML::EndSeq;
+        << centring.shift_translation_px << centring.shift_roll_px << YAML::EndSeq;
     out << YAML::Key << "fitting_pairs" << YAML::Value << centring.fitting.size();
     out << YAML::EndMap;
   }
