@@ -133,6 +133,7 @@ TEST_F(CalibrateBagQualityCli, ReportWritesThePicturesAndAnIndex) {
   const YAML::Node y = YAML::LoadFile(dir_ + "/full.yaml");
   EXPECT_NE(index.find(y["verdict"].as<std::string>()), std::string::npos) << index;
   EXPECT_NE(index.find("loss (Eq. 3, nearest pixel)"), std::string::npos);
+  EXPECT_NE(index.find("refine_ring_end_weight"), std::string::npos) << "which loss each stage reads";
   // The overlays show the result: on a clean drive the best pairs' points lie on the masks,
   // so the top row has green (BGR ~ (60, 170, 60)) and no red points.
   const cv::Mat overlays = cv::imread(report + "/overlays.png");

@@ -158,8 +158,12 @@ std::vector<std::string> writeCalibrationReport(const std::string& dir, const Re
       "the result: green on the person mask, yellow within 3 px of it, red beyond. The mask is "
       "outlined in white.</p>\n<img src=\"overlays.png\">\n";
   if (in.quality) html += "<h2>Coverage</h2>\n<img src=\"coverage.png\">\n";
-  html += "<h2>Convergence</h2>\n<img src=\"convergence.png\">\n<h2>Loss per pair</h2>\n"
-          "<img src=\"pair_losses.png\">\n";
+  // The stages read different losses (INTERFACE.md, the rings' ends): say so where the curve jumps.
+  html += "<h2>Convergence</h2>\n<p>The evolution's generations read Eq. 3 (nearest pixel). The "
+          "refinement's stages read the sub-pixel loss from the person pixels' outline and, in the "
+          "default run, each LiDAR ring end's distance from its own person's outline "
+          "(<code>refine_ring_end_weight</code>): compare values within a stage, not across.</p>\n"
+          "<img src=\"convergence.png\">\n<h2>Loss per pair</h2>\n<img src=\"pair_losses.png\">\n";
   if (uncertainty) html += "<h2>Uncertainty per axis</h2>\n<img src=\"uncertainty.png\">\n";
   if (profile) {
     html += "<h2>Camera time offset</h2>\n<p>The loss with the pose refined at each offset of the coarse "
