@@ -90,6 +90,23 @@ std::vector<CalibrationPair> boardPairs(const CameraModel& camera, std::uint64_t
   return pairs;
 }
 
+// 100 x 80 camera, f = 100.
+CameraModel smallCamera() { return CameraModel::fromK(100, 80, {100, 0, 50, 0, 100, 40, 0, 0, 1}, {}); }
+
+// A person 21 px wide (columns 40-60, rows 30-50) and one ring at elevation 0, 1 m ahead, from
+// u = 40 to 60 in steps of 1 px: at lidarToCamera() its ends lie half a step inside the person
+// pixels' outline (39.5 and 60.5).
+CalibrationPair oneRingPair() {
+  CalibrationPair pair;
+  pair.mask = cv::Mat::zeros(80, 100, CV_8UC1);
+  pair.mask(cv::Rect(40, 30, 21, 21)).setTo(1);
+  for (int k = 0; k <= 20; ++k) {
+    pair.points.emplace_back(1.0f, static_cast<float>(-(40.0 + k - 50.0) / 100.0), 0.0f);
+    pair.labels.push_back(1);
+  }
+  return pair;
+}
+
 std::vector<std::size_t> all(std::size_t n) {
   std::vector<std::size_t> v(n);
   std::iota(v.begin(), v.end(), std::size_t{0});
@@ -126,18 +143,8 @@ TEST(RingEnds, EachRingOfEachPersonGivesItsTwoEndsByAzimuth) {
 }
 
 TEST(RingEnds, TheTermIsZeroForEndsHalfAStepInsideTheOutlineAndGrowsEitherWay) {
-  // 100 x 80 camera, f = 100; a person 21 px wide (columns 40-60) and rows 30-50.
-  const CameraModel camera = CameraModel::fromK(100, 80, {100, 0, 50, 0, 100, 40, 0, 0, 1}, {});
-  CalibrationPair pair;
-  pair.mask = cv::Mat::zeros(80, 100, CV_8UC1);
-  pair.mask(cv::Rect(40, 30, 21, 21)).setTo(1);
-  // One ring at elevation 0, 1 m ahead, from u = 40 to 60 in steps of 1 px: the ends lie half a
-  // step inside the person pixels' outline (39.5 and 60.5).
-  for (int k = 0; k <= 20; ++k) {
-    pair.points.emplace_back(1.0f, static_cast<float>(-(40.0 + k - 50.0) / 100.0), 0.0f);
-    pair.labels.push_back(1);
-  }
-  const std::vector<CalibrationPair> pairs{pair};
+  const CameraModel camera = smallCamera();
+  const std::vector<CalibrationPair> pairs{oneRingPair()};
   const LossEvaluator plain(camera, pairs, LossConfig{5.0, PixelRule::kBilinear});
   const Extrinsic at = lidarToCamera();
   const LossEvaluator loss = plain.withRingEnds(pairs, at, 1.0);
@@ -158,14 +165,8 @@ TEST(RingEnds, TheEndsMoveWithTheirPersonToAnotherTimeOffset) {
   // The person of the test above walking right at 1 m/s, 1 m ahead: 2 px in 20 ms. At offset 0
   // its ends lie half a step inside; at +20 ms both are 2 px off (one beyond its outline, one
   // inside by 2.5 px), so the ring-end term is 2 px whatever the mask loss does.
-  const CameraModel camera = CameraModel::fromK(100, 80, {100, 0, 50, 0, 100, 40, 0, 0, 1}, {});
-  CalibrationPair pair;
-  pair.mask = cv::Mat::zeros(80, 100, CV_8UC1);
-  pair.mask(cv::Rect(40, 30, 21, 21)).setTo(1);
-  for (int k = 0; k <= 20; ++k) {
-    pair.points.emplace_back(1.0f, static_cast<float>(-(40.0 + k - 50.0) / 100.0), 0.0f);
-    pair.labels.push_back(1);
-  }
+  const CameraModel camera = smallCamera();
+  CalibrationPair pair = oneRingPair();
   PersonMotion walker;
   walker.label = 1;
   walker.velocity_mps = Eigen::Vector3d(0, -1, 0);  // LiDAR -y: the image's +u
@@ -320,7 +321,7 @@ TEST(RingEnds, AClusterOutsideEveryRegionHasNoEnds) {
 }
 
 TEST(RingEnds, WithRingEndsNeedsTheEvaluatorsOwnPairs) {
-  const CameraModel camera = CameraModel::fromK(100, 80, {100, 0, 50, 0, 100, 40, 0, 0, 1}, {});
+  const CameraModel camera = smallCamera();
   CalibrationPair pair;
   pair.mask = cv::Mat::zeros(80, 100, CV_8UC1);
   pair.mask(cv::Rect(40, 30, 21, 21)).setTo(1);
