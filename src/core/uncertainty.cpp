@@ -160,6 +160,9 @@ std::string Uncertainty::method() const {
   s << "bootstrap over pairs";
   if (block_pairs > 1) s << " in blocks of " << block_pairs;
   s << ", " << resamples << " resamples, local refinement from the estimate";
+  if (timed) s << " with the time offset";
+  if (ring_ends) s << " reading the rings' ends";
+  if (centred) s << ", then the vertical centring";
   return s.str();
 }
 
@@ -255,6 +258,8 @@ Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& esti
   u.pairs = pairs.size();
   u.stopped = stop.load();
   u.timed = timing.has_value();
+  u.ring_ends = loss.config().ring_end_weight > 0.0 && loss.ringEndCount() > 0;
+  u.centred = centring != nullptr && centring->applied;
   u.evaluations = reference.evaluations;
   for (int b = 0; b < total; ++b) {
     if (!done[static_cast<std::size_t>(b)]) continue;

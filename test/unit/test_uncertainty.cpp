@@ -142,3 +142,30 @@ TEST(Uncertainty, ResamplesDrawWithReplacementInRunsOfConsecutivePairs) {
     if (k % 4 != 0) EXPECT_EQ(blocks[k], blocks[k - 1] + 1) << "entry " << k;
   }
 }
+
+// The description says what each resample's fit did beyond the refinement, as the estimate's:
+// read from an evaluator with the rings' ends, it says so; without, it does not.
+TEST(Uncertainty, TheDescriptionSaysWhatTheResamplesRead) {
+  auto data = pairs(10, 4);
+  test_support::snapToRings(data, 1.33);
+  const LossEvaluator plain(fieldsafeCamera(), data, LossConfig{});
+  const LossEvaluator with_ends = plain.withRingEnds(data, fieldsafeTruth(), 1.0);
+  ASSERT_GT(with_ends.ringEndCount(), 0u);
+  UncertaintyConfig config = UncertaintyConfig::quick();
+  config.num_threads = 1;
+  const auto stop_at_two = [](int done, int) { return done < 2; };
+  const Uncertainty without = estimateUncertainty(plain, fieldsafeTruth(), all(10), config, stop_at_two);
+  const Uncertainty with = estimateUncertainty(with_ends, fieldsafeTruth(), all(10), config, stop_at_two);
+  EXPECT_FALSE(without.ring_ends);
+  EXPECT_TRUE(with.ring_ends);
+  EXPECT_EQ(without.method().find("rings' ends"), std::string::npos) << without.method();
+  EXPECT_NE(with.method().find("reading the rings' ends"), std::string::npos) << with.method();
+  Uncertainty u;
+  u.block_pairs = 5;
+  u.resamples = 100;
+  EXPECT_EQ(u.method(), "bootstrap over pairs in blocks of 5, 100 resamples, local refinement from the estimate");
+  u.timed = u.ring_ends = u.centred = true;
+  EXPECT_EQ(u.method(),
+            "bootstrap over pairs in blocks of 5, 100 resamples, local refinement from the estimate with the "
+            "time offset reading the rings' ends, then the vertical centring");
+}

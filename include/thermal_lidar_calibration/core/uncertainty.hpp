@@ -77,9 +77,15 @@ struct Uncertainty {
   // Correlation of the resampled time offsets with the translations along camera x, y, z: near
   // +-1 where the drive cannot tell a late camera from one mounted further along its travel.
   Eigen::Vector3d time_translation_correlation = Eigen::Vector3d::Zero();
+  // What each resample's fit read and did, as the estimate's: the rings' ends (ring_ends.hpp),
+  // the vertical centring (vertical_centring.hpp).
+  bool ring_ends = false;
+  bool centred = false;
   double seconds = 0.0;
   bool stopped = false;        // the callback asked to stop; fewer resamples
-  std::string method() const;  // "bootstrap over pairs, 100 resamples" (block: "...")
+  // "bootstrap over pairs in blocks of 5, 100 resamples, local refinement from the estimate",
+  // then what the fits also did (the time offset, the rings' ends, the centring).
+  std::string method() const;
   // Half-width of axis k, rotation axes 0-2 (deg), translation axes 3-5 (cm).
   double halfWidth(int k) const { return k < 3 ? rotation_deg[k] : translation_cm[k - 3]; }
 };
