@@ -89,6 +89,32 @@ std::vector<std::size_t> keepOnly(const std::vector<std::size_t>& pairs, const s
   return out;
 }
 
+// The margin's reading alone: the stretch of poses that fit is the masks', not the ring ends'
+// (those pull toward one pose; the calibration centres without them, so must a resample).
+LossEvaluator marginReading(const LossEvaluator& loss, const VerticalCentringConfig& config) {
+  return loss.withPixelRule(PixelRule::kBilinear).withMargin(config.margin_px).withoutRingEnds();
+}
+
+// The estimate's move as a point of the space (the resamples start there), and back.
+template <int N>
+Point<N> shiftOf(const VerticalCentringOutcome& o) {
+  Point<N> q;
+  q[0] = o.shift_rotation_px;
+  q[1] = o.shift_translation_px;
+  if constexpr (N == 3) q[2] = o.shift_roll_px;
+  return q;
+}
+
+template <int N>
+void applyCentre(const CentringSpace& space, const Point<N>& centre, VerticalCentringOutcome& out) {
+  out.extrinsic = space.at<N>(centre);
+  out.applied = true;
+  out.skipped_because.clear();
+  out.shift_rotation_px = centre[0];
+  out.shift_translation_px = centre[1];
+  if constexpr (N == 3) out.shift_roll_px = centre[2];
+}
+
 // centreVertically's work past the checks, in the plane (N = 2) or with the roll (N = 3).
 template <int N>
 void centreEstimate(const LossEvaluator& with_margin, const CentringSpace& space,
@@ -140,12 +166,7 @@ void centreEstimate(const LossEvaluator& with_margin, const CentringSpace& space
     out.skipped_because = "region unbounded";
     return;
   }
-  out.extrinsic = space.at<N>(centre);
-  out.applied = true;
-  out.skipped_because.clear();
-  out.shift_rotation_px = centre[0];
-  out.shift_translation_px = centre[1];
-  if constexpr (N == 3) out.shift_roll_px = centre[2];
+  applyCentre(space, centre, out);
 }
 
 // centreResample's work past the checks.
@@ -157,10 +178,7 @@ void centreResampleIn(const LossEvaluator& with_margin, const CentringSpace& spa
   const SpaceLoss<N> f(with_margin, space, fitting, threads, out.evaluations);
   // Where the estimate's centring moved the estimate; if the resample's points do not fit there,
   // its best pose is sought as for the estimate.
-  Point<N> centre;
-  centre[0] = estimate.shift_rotation_px;
-  centre[1] = estimate.shift_translation_px;
-  if constexpr (N == 3) centre[2] = estimate.shift_roll_px;
+  Point<N> centre = shiftOf<N>(estimate);
   double here = f({centre})[0];
   if (here > estimate.level_px) {
     centre = bestPoint(f, centre, here, kResampleFirstStep, estimate.level_px);
@@ -172,13 +190,8 @@ void centreResampleIn(const LossEvaluator& with_margin, const CentringSpace& spa
     out.skipped_because = "region unbounded";
     return;
   }
-  out.extrinsic = space.at<N>(centre);
-  out.applied = true;
-  out.skipped_because.clear();
+  applyCentre(space, centre, out);
   out.fitting_pairs = fitting.size();
-  out.shift_rotation_px = centre[0];
-  out.shift_translation_px = centre[1];
-  if constexpr (N == 3) out.shift_roll_px = centre[2];
 }
 
 }  // namespace
@@ -192,10 +205,7 @@ VerticalCentringOutcome centreVertically(const LossEvaluator& loss, const Extrin
   out.extrinsic = start;
   if (!config.enabled) return out;
   out.ran = true;
-  // The margin's reading alone: the stretch of poses that fit is the masks', not the ring ends'
-  // (those pull toward one pose; the calibration centres without them, so must a resample).
-  const LossEvaluator with_margin =
-      loss.withPixelRule(PixelRule::kBilinear).withMargin(config.margin_px).withoutRingEnds();
+  const LossEvaluator with_margin = marginReading(loss, config);
   const CentringSpace space(start, with_margin.centroid(pairs), with_margin.camera());
   if (!(space.pivotDepth() > 0.0)) {
     out.skipped_because = "pivot behind the camera";
@@ -221,8 +231,7 @@ VerticalCentringOutcome centreResample(const LossEvaluator& loss, const Extrinsi
     return out;
   }
   const VerticalCentringConfig& config = estimate.config;
-  const LossEvaluator with_margin =
-      loss.withPixelRule(PixelRule::kBilinear).withMargin(config.margin_px).withoutRingEnds();
+  const LossEvaluator with_margin = marginReading(loss, config);
   const std::vector<std::size_t> fitting =
       config.pair_fit_px > 0.0 ? keepOnly(resample, estimate.fitting) : resample;
   if (fitting.empty()) {
