@@ -1,5 +1,6 @@
 #include "thermal_lidar_calibration/core/calibration_config.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -66,8 +67,17 @@ const ParameterRanges<RefineConfig>& RefineConfig::ranges() {
       .add("refine_max_evaluations", &RefineConfig::max_evaluations, IntRange{1, 100000000})
       .add("refine_ring_alias_turns", &RefineConfig::ring_alias_turns, IntRange{0, 5})
       .add("refine_outline_px", &RefineConfig::outline_px, closedRange(0, 1))
-      .add("refine_ring_end_weight", &RefineConfig::ring_end_weight, closedRange(0, 100));
+      .add("refine_ring_end_weight", &RefineConfig::ring_end_weight, closedRange(0, 100))
+      .add("refine_evolution_generations", &RefineConfig::evolution_generations, IntRange{0, 100000});
   return ranges;
+}
+
+EvolutionConfig CalibrationConfig::evolutionRun() const {
+  EvolutionConfig run = evolution;
+  if (refine.mode == RefineMode::kLocal && refine.evolution_generations > 0) {
+    run.max_iterations = std::min(run.max_iterations, refine.evolution_generations);
+  }
+  return run;
 }
 
 void RefineConfig::validate() const {

@@ -84,16 +84,17 @@ class Reporter {
 };
 
 // Algorithm 1 or 2 (the paper): sets the result's extrinsic, inliers and counts; returns the
-// pairs used.
+// pairs used. The default run stops the evolution earlier (CalibrationConfig::evolutionRun).
 std::vector<std::size_t> evolve(const LossEvaluator& nearest, const CalibrationConfig& config, Rng& rng,
                                 Reporter& report, CalibrationResult& result) {
   const std::size_t n = nearest.pairCount();
-  const int generations = config.evolution.max_iterations;
+  const EvolutionConfig evolution = config.evolutionRun();
+  const int generations = evolution.max_iterations;
   std::vector<std::size_t> used(n);
   std::iota(used.begin(), used.end(), std::size_t{0});
   EvolutionOutcome fit;
   if (config.algorithm == Algorithm::kOutlierRejection) {
-    const OutlierRejection algorithm2(nearest, config.evolution, config.outlier, config.num_threads);
+    const OutlierRejection algorithm2(nearest, evolution, config.outlier, config.num_threads);
     const OutlierOutcome outcome = algorithm2.run(
         rng, [&](const std::string& stage, int g, double best, const Extrinsic& e, std::uint64_t evals) {
           return report(stage, g, generations, best, e, evals);
@@ -108,7 +109,7 @@ std::vector<std::size_t> evolve(const LossEvaluator& nearest, const CalibrationC
       if (outcome.inliers[i]) used.push_back(i);
     }
   } else {
-    const EvolutionaryOptimizer algorithm1(nearest, config.evolution, config.num_threads);
+    const EvolutionaryOptimizer algorithm1(nearest, evolution, config.num_threads);
     fit = algorithm1.run(used, rng, [&](int g, double best, const Extrinsic& e, std::uint64_t evals) {
       return report("plain_fit", g, generations, best, e, evals);
     });

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace thermal_lidar_calibration;
@@ -176,4 +177,32 @@ TEST(Calibrate, RecordsTheBestLossPerGenerationThenTheRefinement) {
   }
   EXPECT_EQ(final_generations, 30);
   EXPECT_NEAR(r.history.back().best_loss, r.loss_bilinear, 1e-6);
+}
+
+// The default run's evolution only has to land in the refinement's basin: it stops after
+// refine.evolution_generations; the paper's mode always runs iter_max.
+TEST(Calibrate, TheDefaultRunStopsTheEvolutionEarlierThanThePaper) {
+  const auto data = pairs(20, 9);
+  CalibrationConfig config;
+  config.algorithm = Algorithm::kPlain;
+  config.evolution.population_size = 50;
+  config.evolution.max_iterations = 60;
+  config.refine.evolution_generations = 20;
+  const auto last_generation = [](const CalibrationResult& r) {
+    int last = 0;
+    for (const ConvergenceStep& s : r.history) {
+      if (s.stage == "plain_fit") last = std::max(last, s.step);
+    }
+    return last;
+  };
+  EXPECT_EQ(last_generation(calibrate(fieldsafeCamera(), data, config)), 20);
+  config.refine.mode = RefineMode::kNone;
+  EXPECT_EQ(last_generation(calibrate(fieldsafeCamera(), data, config)), 60);
+  config.refine.mode = RefineMode::kLocal;
+  config.refine.evolution_generations = 0;  // as the paper
+  EXPECT_EQ(config.evolutionRun().max_iterations, 60);
+  config.refine.evolution_generations = 1000;  // never more than iter_max
+  EXPECT_EQ(config.evolutionRun().max_iterations, 60);
+  config.refine.evolution_generations = -1;
+  EXPECT_THROW(config.validate(), std::invalid_argument);
 }

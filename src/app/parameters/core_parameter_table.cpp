@@ -265,6 +265,10 @@ void addOptimizerRows(ParameterTable<CoreParameters>& t) {
               "how far along the image row it lies from where it should, half a point spacing inside that "
               "person's own mask region (a mask loss alone is lowest where the projected people are smaller), "
               "this much per pair; 0: off");
+  refine.integer("refine_evolution_generations", &RefineConfig::evolution_generations, kConfigRange, "",
+                 "with refine local, Algorithm 1 runs at most this many generations (and never more than "
+                 "max_iterations): the evolution only has to find the basin the refinement then searches; 0: "
+                 "max_iterations, as the paper; refine none always runs max_iterations");
 }
 
 }  // namespace
