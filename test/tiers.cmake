@@ -5,8 +5,9 @@
 #         make_synthetic_bag): no ROS master
 #   ros   the rostests and the installed package: a ROS master and running nodes
 # `make run_<tier>_tests` in the build directory runs one tier; with make -jN its tests run N at a
-# time (the unit and CLI tests share nothing but the machine; each rostest starts its own master
-# on the same port, so that tier runs one at a time).
+# time (the unit and CLI tests share nothing but the machine). scripts/run_tests.sh runs the ROS
+# tier one test at a time beside the other two: each rostest starts its own master (on a free
+# port) and nodes that keep about one core busy.
 #
 # A test's tier follows from how it is registered: catkin's test type, and for the gtests that
 # run the built tools, tlc_cli_gtest_tier() beside their registration. tlc_make_test_tiers() runs
