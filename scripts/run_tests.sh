@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The test suite on a fresh Debian 12 machine: installs what it needs (apt-get), builds the
-# package and its tests, runs them (the unit and CLI tiers side by side, the ROS tier beside them), then
-# prints "N passed, N failed, N skipped".
+# package and its tests, runs them (the unit and CLI tiers side by side, the ROS tier beside
+# them), then prints "N passed, N failed, N skipped".
 #
 # Usage: scripts/run_tests.sh [--fast]
 #   (none)   every tier: unit, CLI and ROS (CI runs this, through .ci/run)
