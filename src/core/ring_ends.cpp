@@ -163,9 +163,16 @@ RingEndSet assignRingEnds(const cv::Mat& mask, const std::vector<std::int32_t>& 
                           const RingEndRules& rules) {
   RingEndSet out;
   if (ends.empty() || mask.empty() || labels.size() != pixels.size()) return out;
-  cv::Mat regions;
-  cv::Mat stats, centroids;
-  cv::connectedComponentsWithStats(mask != 0, regions, stats, centroids, 8, CV_32S);
+  // The components are found in the box of the person pixels only (they are all inside it), a
+  // fraction of the image: this runs for every pair each time a fit reads the rings' ends.
+  const cv::Rect box = cv::boundingRect(mask);
+  if (box.empty()) return out;
+  cv::Mat crop, stats, centroids;
+  cv::connectedComponentsWithStats(mask(box) != 0, crop, stats, centroids, 8, CV_32S);
+  cv::Mat regions = cv::Mat::zeros(mask.size(), CV_32S);
+  crop.copyTo(regions(box));
+  stats.col(cv::CC_STAT_LEFT) += box.x;
+  stats.col(cv::CC_STAT_TOP) += box.y;
   const std::map<std::int32_t, int> owner = ownRegions(regions, labels, pixels, rules.min_inside);
   std::map<int, std::uint32_t> outline_of;  // region -> index into out.outlines
   for (const RingEnd& e : ends) {
