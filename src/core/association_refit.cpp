@@ -1,10 +1,13 @@
 #include "thermal_lidar_calibration/core/association_refit.hpp"
 
+#include "thermal_lidar_calibration/core/distance_map.hpp"
 #include "thermal_lidar_calibration/core/loss.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <map>
+#include <memory>
 #include <stdexcept>
 #include <utility>
 
@@ -24,6 +27,51 @@ Signature signatureOf(const std::vector<CalibrationPair>& pairs) {
   }
   return s;
 }
+
+// Each frame's distance map, built once for all the fits and checks that read its pair: every
+// round pairs the same candidate frames again, and each refit, the quality and the truth's loss
+// read them all. Frames are told apart by candidate_index when the candidates' are distinct
+// (a builder's always are); otherwise each pair gets its own map. A mask the map cannot be built
+// from is left to the evaluator, which says what is wrong with it.
+class DistanceMaps {
+ public:
+  explicit DistanceMaps(const std::vector<CalibrationPair>& candidates) {
+    std::vector<std::uint64_t> indices;
+    for (const CalibrationPair& c : candidates) indices.push_back(c.candidate_index);
+    std::sort(indices.begin(), indices.end());
+    by_frame_ = std::adjacent_find(indices.begin(), indices.end()) == indices.end();
+  }
+  // The count rule's pairs: each its own map (their copies in every round share it).
+  static void attachOwn(std::vector<CalibrationPair>& pairs) {
+    for (CalibrationPair& p : pairs) {
+      if (!p.distance_map) p.distance_map = build(p.mask);
+    }
+  }
+  // Pairs made by association from the candidates.
+  void attach(std::vector<CalibrationPair>& associated) {
+    for (CalibrationPair& p : associated) {
+      if (p.distance_map) continue;
+      if (!by_frame_) {
+        p.distance_map = build(p.mask);
+        continue;
+      }
+      std::shared_ptr<const DistanceMap>& map = maps_[p.candidate_index];
+      if (!map) map = build(p.mask);
+      p.distance_map = map;
+    }
+  }
+
+ private:
+  static std::shared_ptr<const DistanceMap> build(const cv::Mat& mask) {
+    try {
+      return std::make_shared<const DistanceMap>(mask);
+    } catch (const std::invalid_argument&) {
+      return nullptr;
+    }
+  }
+  bool by_frame_ = false;
+  std::map<std::uint64_t, std::shared_ptr<const DistanceMap>> maps_;
+};
 
 // The count rule's pairs and the association's, in candidate (time) order.
 std::vector<CalibrationPair> merged(const std::vector<CalibrationPair>& counts,
@@ -162,6 +210,8 @@ AssociatedCalibration calibrateWithAssociation(const CameraModel& camera, std::v
   const std::optional<InitialExtrinsic> start = associate ? initial : std::nullopt;
   if (initial && !start) out.note = "initial extrinsic not used: pairing counts / refine none fit as the paper does";
 
+  DistanceMaps maps(candidates);
+  DistanceMaps::attachOwn(count_pairs);
   const CalibrationResult first = firstFit(camera, count_pairs, config, pairing, start, progress, out);
   out.result = first;
   out.pairs = std::move(count_pairs);
@@ -174,9 +224,10 @@ AssociatedCalibration calibrateWithAssociation(const CameraModel& camera, std::v
   Signature previous;
   out.converged = false;
   for (int round = 1; round <= pairing.association.max_rounds; ++round) {
-    const std::vector<CalibrationPair> associated =
+    std::vector<CalibrationPair> associated =
         associatePairs(camera, candidates, count_indices, out.result.extrinsic, appliedOffset(out.result),
                        pairing.association, limits);
+    maps.attach(associated);
     out.rounds = round;
     Signature now = signatureOf(associated);
     if (now == previous) {  // the last refit was on this very set

@@ -102,7 +102,7 @@ kernels::RingEnds viewOf(const PackedRingEnds& e, const RingEndPoints& p) {
 }  // namespace
 
 PreparedPair::PreparedPair(const CalibrationPair& pair, std::optional<double> time_offset_s)
-    : distance(std::make_shared<const DistanceMap>(pair.mask)) {
+    : distance(pair.distance_map ? pair.distance_map : std::make_shared<const DistanceMap>(pair.mask)) {
   count = pair.points.size();
   const std::size_t padded = (count + kernels::kPointBlock - 1) / kernels::kPointBlock * kernels::kPointBlock;
   x.assign(padded, 0.0f);

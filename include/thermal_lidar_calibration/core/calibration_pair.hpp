@@ -7,10 +7,13 @@
 #include <opencv2/core.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace thermal_lidar_calibration {
+
+class DistanceMap;
 
 // A decoded synchronized frame as it arrives from a bag or topics (before gating).
 struct Frame {
@@ -57,6 +60,10 @@ struct CalibrationPair {
   PairRule rule = PairRule::kCounts;
   std::uint64_t candidate_index = 0;
   cv::Mat regions;
+  // `mask`'s distance map, when a caller built it once for every evaluator of the pair (the
+  // association's rounds, the quality, the truth's loss); empty: each LossEvaluator builds its own.
+  // Whoever changes `mask` resets it.
+  std::shared_ptr<const DistanceMap> distance_map;
 };
 
 }  // namespace thermal_lidar_calibration
