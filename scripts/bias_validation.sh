@@ -16,6 +16,7 @@
 # calibration on 2 cores (ideal) and longer with --detect; the full table is ~40 per label.
 # Usage: scripts/bias_validation.sh [--rigs "fieldsafe ms2"] [--noise "clean realistic"]
 #          [--inputs "ideal detect"] [--refine local|none] [--bin LABEL=DIR]... [--keep-raw]
+#          [--config LABEL=FILE]...   (FILE's keys for that label's runs, after config/ms2.yaml's)
 #          [SEEDS...]                                        (default seeds 1 2 3 4 5)
 set -euo pipefail
 # shellcheck source=scripts/workspace.sh
@@ -26,6 +27,7 @@ inputs="ideal detect"
 refine=local
 keep_raw=0
 bins=()
+declare -A label_config=()
 seeds=()
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -34,6 +36,7 @@ while [ $# -gt 0 ]; do
     --inputs) inputs="$2"; shift 2 ;;
     --refine) refine="$2"; shift 2 ;;
     --bin) bins+=("$2"); shift 2 ;;
+    --config) label_config["${2%%=*}"]="$(realpath "${2#*=}")"; shift 2 ;;
     --keep-raw) keep_raw=1; shift ;;
     -h|--help) sed -n '2,20p' "${BASH_SOURCE[0]}"; exit 0 ;;
     *) seeds+=("$1"); shift ;;
@@ -56,7 +59,13 @@ calibrate() {  # label dir bag truth rig input noise seed
   local label=$1 dir=$2 bag=$3 truth=$4 rig=$5 input=$6 noise=$7 seed=$8
   local name="$input.$rig.$noise.$seed" args=(--refine "$refine")
   mkdir -p "$out/$label"
-  [ "$rig" = ms2 ] && args+=(--config "$repo/config/ms2.yaml")
+  # calibrate_bag reads one --config: the rig's keys and the label's go in one file.
+  local config="$out/configs/$label.$rig.yaml"
+  mkdir -p "$out/configs"
+  : > "$config"
+  [ "$rig" = ms2 ] && cat "$repo/config/ms2.yaml" >> "$config"
+  [ -n "${label_config[$label]:-}" ] && cat "${label_config[$label]}" >> "$config"
+  [ -s "$config" ] && args+=(--config "$config")
   [ "$input" = detect ] && args+=(--detect)
   if [ -s "$out/$label/$name.yaml" ]; then return 0; fi  # done by an earlier run
   echo "== $label: $name" >&2
