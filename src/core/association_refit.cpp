@@ -142,6 +142,51 @@ void carryOver(const CalibrationResult& first, CalibrationResult& refit) {
   refit.history = std::move(history);
 }
 
+// Issue 24: one more association at the converged extrinsic with the skip rule off, over every
+// candidate and skipped frame, and a refinement on that set from where the rounds ended. Between
+// two kept frames the people move a few centimetres: their rings meet them at other heights,
+// which is what the vertical fit lacks on sparse pairs (a ring every 1.33 deg). The rounds'
+// evolution-free refits stay on the spaced pairs, so a frame of this round never decides which
+// basin the fit is in. A pair the rounds did not make is marked outside_skip_rule.
+void finalRound(const CameraModel& camera, const std::vector<CalibrationPair>& counts,
+                const std::vector<CalibrationPair>& candidates, const std::vector<std::uint64_t>& count_indices,
+                const CalibrationConfig& config, const PairingConfig& pairing, const PairingLimits& limits,
+                const CalibrationResult& first, const ProgressCallback& progress, DistanceMaps& maps,
+                AssociatedCalibration& out) {
+  std::vector<std::uint64_t> spaced;  // the frames the rounds paired
+  for (const CalibrationPair& p : out.pairs) {
+    if (p.rule == PairRule::kAssociation) spaced.push_back(p.candidate_index);
+  }
+  std::sort(spaced.begin(), spaced.end());
+  PairingLimits every_frame = limits;
+  every_frame.skip_frames = 0;
+  std::vector<CalibrationPair> associated =
+      associatePairs(camera, candidates, count_indices, out.result.extrinsic, appliedOffset(out.result),
+                     pairing.association, every_frame);
+  if (associated.size() <= out.association_pairs) return;  // nothing the rounds did not have
+  maps.attach(associated);
+  for (CalibrationPair& p : associated) {
+    p.outside_skip_rule = !std::binary_search(spaced.begin(), spaced.end(), p.candidate_index);
+  }
+  std::vector<CalibrationPair> enlarged = merged(counts, associated);
+  // The ring alias check ran on the rounds' fits; from their end there is no ring to turn.
+  CalibrationConfig final_config = config;
+  final_config.refine.ring_alias_turns = 0;
+  CalibrationResult refit = refineFrom(camera, enlarged, final_config, out.result.extrinsic,
+                                       out.result.time_offset_s, progress);
+  out.final_round_evaluations = refit.evaluations;
+  out.final_round_points = refit.points_projected;
+  carryOver(first, refit);
+  refit.ring_alias_tried = out.result.ring_alias_tried;
+  refit.ring_alias_turn = out.result.ring_alias_turn;
+  out.result = std::move(refit);
+  out.pairs = std::move(enlarged);
+  out.association_pairs = associated.size();
+  out.final_round_pairs = static_cast<std::size_t>(
+      std::count_if(out.pairs.begin(), out.pairs.end(), [](const CalibrationPair& p) { return p.outside_skip_rule; }));
+  out.final_round = true;
+}
+
 }  // namespace
 
 const char* toString(PairingMode mode) {
@@ -220,12 +265,19 @@ AssociatedCalibration calibrateWithAssociation(const CameraModel& camera, std::v
   std::vector<std::uint64_t> count_indices;
   for (const CalibrationPair& p : out.pairs) count_indices.push_back(p.candidate_index);
   const std::vector<CalibrationPair> counts = out.pairs;
+  // The rounds pair the frames the skip rule let through; the final round all of them.
+  std::vector<CalibrationPair> spaced;
+  bool skipped_frames = false;
+  for (const CalibrationPair& c : candidates) {
+    if (!c.outside_skip_rule) spaced.push_back(c);
+    skipped_frames = skipped_frames || c.outside_skip_rule;
+  }
   std::uint64_t evaluations = first.evaluations, points = first.points_projected;
   Signature previous;
   out.converged = false;
   for (int round = 1; round <= pairing.association.max_rounds; ++round) {
     std::vector<CalibrationPair> associated =
-        associatePairs(camera, candidates, count_indices, out.result.extrinsic, appliedOffset(out.result),
+        associatePairs(camera, spaced, count_indices, out.result.extrinsic, appliedOffset(out.result),
                        pairing.association, limits);
     maps.attach(associated);
     out.rounds = round;
@@ -256,6 +308,11 @@ AssociatedCalibration calibrateWithAssociation(const CameraModel& camera, std::v
     out.association_pairs = associated.size();
     previous = std::move(now);
     if (out.result.stopped) break;
+  }
+  if (pairing.final_round && (skipped_frames || limits.skip_frames > 0) && !out.result.stopped) {
+    finalRound(camera, counts, candidates, count_indices, config, pairing, limits, first, progress, maps, out);
+    evaluations += out.final_round_evaluations;
+    points += out.final_round_points;
   }
   out.result.evaluations = evaluations;
   out.result.points_projected = points;

@@ -88,6 +88,7 @@ OfferOutcome DatasetBuilder::admit(const std::function<Frame()>& decode, bool st
   outcome.frame_index = index;
   if (!stored && gate_.consumeSkip()) {
     outcome.decision = GateDecision::kSkipped;
+    if (keepsSkippedFrames()) holdSkippedFrame(decode, index);
     return outcome;
   }
 
@@ -127,21 +128,43 @@ OfferOutcome DatasetBuilder::admit(const std::function<Frame()>& decode, bool st
                          people.mask_people > 0 && people.cluster_people > 0;
   outcome.candidate = candidate;
   if (outcome.decision != GateDecision::kKept && !candidate) return outcome;
+  hold(std::move(frame), index, candidate ? PairRule::kAssociation : PairRule::kCounts, outcome.mask_people, false);
+  return outcome;
+}
 
+void DatasetBuilder::holdSkippedFrame(const std::function<Frame()>& decode, std::uint64_t index) {
+  Frame frame;
+  PeopleCounts people;
+  try {
+    frame = decode();
+    checkFrame(frame, camera_);
+    people = countPeople(frame.mask, frame.labels);
+  } catch (const std::exception&) {
+    return;  // counted when a frame the gate decides on is bad the same way
+  }
+  if (people.mask_people == 0 || people.cluster_people == 0) return;
+  if (frame.camera_frame != camera_frame_ || frame.lidar_frame != lidar_frame_) return;
+  hold(std::move(frame), index, PairRule::kAssociation, people.mask_people, true);
+}
+
+void DatasetBuilder::hold(Frame frame, std::uint64_t index, PairRule rule, int people, bool skipped) {
   CalibrationPair pair;
   pair.stamp_s = frame.stamp_s;
   pair.candidate_index = index;
-  if (candidate) {
-    pair.rule = PairRule::kAssociation;
+  pair.rule = rule;
+  pair.outside_skip_rule = skipped;
+  if (rule == PairRule::kAssociation) {
     pair.regions = personRegions(frame.mask);  // the mask itself follows once a pair is made
   } else {
     pair.mask = binarizeMask(frame.mask);
   }
-  // A decoder may wrap a message buffer (cv_bridge::toCvShare): keep a copy we own.
-  pair.image = frame.image.u != nullptr ? frame.image : frame.image.clone();
+  // A decoder may wrap a message buffer (cv_bridge::toCvShare): keep a copy we own. A skipped
+  // frame holds none: its neighbours show the same scene, and the skipped ones would double
+  // what the held frames take (the report draws the pairs that have one).
+  if (!skipped) pair.image = frame.image.u != nullptr ? frame.image : frame.image.clone();
   pair.points = std::move(frame.points);
   pair.labels = std::move(frame.labels);
-  pair.people = outcome.mask_people;
+  pair.people = people;
   pair.cloud_stamp_s = frame.cloud_stamp_s;
   pair.point_time_s = std::move(frame.point_time_s);
   pair.point_velocity = std::move(frame.point_velocity);
@@ -152,7 +175,6 @@ OfferOutcome DatasetBuilder::admit(const std::function<Frame()>& decode, bool st
   } else {
     keep(std::move(pair));
   }
-  return outcome;
 }
 
 void DatasetBuilder::keepAssociationCandidates(bool keep, std::size_t max_candidates) {
@@ -161,26 +183,35 @@ void DatasetBuilder::keepAssociationCandidates(bool keep, std::size_t max_candid
   max_candidates_ = max_candidates;
 }
 
-// Candidates seen so far are numbered 0, 1, 2, ...; those held are the multiples of the stride.
+// Frames seen so far are numbered 0, 1, 2, ...; those held are the multiples of the stride.
 // Full: the odd multiples go and the stride doubles, so the held ones stay evenly spaced.
-void DatasetBuilder::keepCandidate(CalibrationPair pair) {
-  const std::uint64_t seen = candidates_seen_++;
-  if (seen % candidate_stride_ != 0) {
-    ++candidates_dropped_;
-    return;
-  }
-  candidates_.push_back(std::move(pair));
-  if (candidates_.size() <= max_candidates_) return;
+std::uint64_t DatasetBuilder::SpacedFrames::add(CalibrationPair pair, std::size_t bound) {
+  if (seen++ % stride != 0) return 1;
+  held.push_back(std::move(pair));
+  if (held.size() <= bound) return 0;
   std::size_t kept = 0;
-  for (std::size_t i = 0; i < candidates_.size(); i += 2) candidates_[kept++] = std::move(candidates_[i]);
-  candidates_dropped_ += candidates_.size() - kept;
-  candidates_.resize(kept);
-  candidate_stride_ *= 2;
+  for (std::size_t i = 0; i < held.size(); i += 2) held[kept++] = std::move(held[i]);
+  const std::uint64_t dropped = held.size() - kept;
+  held.resize(kept);
+  stride *= 2;
+  return dropped;
+}
+
+std::vector<CalibrationPair> DatasetBuilder::SpacedFrames::take() {
+  std::vector<CalibrationPair> out;
+  out.swap(held);
+  seen = 0;
+  stride = 1;
+  return out;
 }
 
 void DatasetBuilder::keep(CalibrationPair pair) {
+  if (pair.outside_skip_rule) {
+    skipped_.add(std::move(pair), max_candidates_);  // extra frames: their drops are not the candidates'
+    return;
+  }
   if (pair.rule == PairRule::kAssociation) {
-    keepCandidate(std::move(pair));
+    candidates_dropped_ += candidates_.add(std::move(pair), max_candidates_);
     return;
   }
   pairs_.push_back(std::move(pair));
@@ -266,9 +297,8 @@ void DatasetBuilder::checkFrameIds(const Frame& frame) {
       for (const CalibrationPair& p : pending_) pairs_dropped_for_ids_ += p.rule == PairRule::kCounts ? 1 : 0;
       pairs_dropped_for_ids_ += pairs_.size();
       pairs_.clear();
-      candidates_.clear();
-      candidates_seen_ = 0;
-      candidate_stride_ = 1;
+      candidates_.take();
+      skipped_.take();
       pending_.clear();
       camera_frame_ = ids.first;
       lidar_frame_ = ids.second;
@@ -292,13 +322,9 @@ std::optional<FrameIdConflict> DatasetBuilder::frameIdConflict(std::uint64_t min
                          refused_in_a_row_};
 }
 
-std::vector<CalibrationPair> DatasetBuilder::takeCandidates() {
-  std::vector<CalibrationPair> out;
-  out.swap(candidates_);
-  candidates_seen_ = 0;  // the next ones are spaced among themselves
-  candidate_stride_ = 1;
-  return out;
-}
+std::vector<CalibrationPair> DatasetBuilder::takeCandidates() { return candidates_.take(); }
+
+std::vector<CalibrationPair> DatasetBuilder::takeSkippedFrames() { return skipped_.take(); }
 
 std::vector<CalibrationPair> DatasetBuilder::takePairs() {
   std::vector<CalibrationPair> out;
@@ -308,9 +334,8 @@ std::vector<CalibrationPair> DatasetBuilder::takePairs() {
 
 void DatasetBuilder::reset() {
   pairs_.clear();
-  candidates_.clear();
-  candidates_seen_ = 0;
-  candidate_stride_ = 1;
+  candidates_.take();
+  skipped_.take();
   candidates_dropped_ = 0;
   offered_ = 0;
   pending_.clear();

@@ -150,6 +150,7 @@ void CalibrationNode::createBuilder(const CameraModel& camera, const std::string
   builder_->keepAssociationCandidates(
       pairsByAssociation(params_.core.pairing, params_.core.calibration),
       static_cast<std::size_t>(params_.association_max_candidates));
+  builder_->keepSkippedFrames(params_.core.pairing.final_round);
   overlay_->setCamera(camera);
   ROS_INFO("camera intrinsics from %s: %s", source.c_str(), camera.describe().c_str());
 }

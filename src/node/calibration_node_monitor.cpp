@@ -71,6 +71,10 @@ void CalibrationNode::startMonitoring(const Extrinsic& reference, const std::str
   last_timing_state_ = DriftState::kOk;
   if (builder_->frameIdsLocked()) builder_->takePairs();  // the calibration's pairs are done
   builder_->takeCandidates();                              // and so are its candidates
+  // The watch pairs the frames the skip rule lets through, as its windows are sized for them:
+  // the skipped ones are neither decoded nor held from here on.
+  builder_->keepSkippedFrames(false);
+  builder_->takeSkippedFrames();
   kept_messages_.clear();  // a watch never records
   candidate_messages_.clear();
   finished_pairs_ = 0;

@@ -74,7 +74,7 @@ std::string CalibrationNode::startOptimization(const std::string& why) {
   job.camera = builder_->camera();
   job.pairs = builder_->pairs();
   // Copies share the images (cv::Mat): the candidates stay for the next fit (~stop_when quality).
-  job.candidates = builder_->candidates();
+  job.candidates = inOfferOrder(builder_->candidates(), builder_->skippedFrames());
   job.candidates_collected = builder_->keepsAssociationCandidates();
   job.parameters = params_.core;
   job.reference = runReference();

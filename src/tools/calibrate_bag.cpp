@@ -285,6 +285,8 @@ BagPairs readPairs(const CalibrateBagOptions& options, CoreParameters& params, P
   read.builder = std::make_unique<DatasetBuilder>(read.camera, params.gate, params.motion);
   DatasetBuilder& builder = *read.builder;
   builder.keepAssociationCandidates(pairsByAssociation(params.pairing, params.calibration));
+  // The drift watch (--monitor) pairs the spaced frames only, as the node's does.
+  builder.keepSkippedFrames(params.pairing.final_round && !options.monitor);
   IngestCallbacks callbacks;
   callbacks.warn = warn;
   callbacks.progress = [&](const BagIngestStats& s, const DatasetBuilder& b) {
@@ -334,7 +336,7 @@ CalibrationJobOutcome calibratePairs(const CalibrateBagOptions& options, const C
   job.camera = read.camera;
   job.pairs = read.builder->takePairs();
   job.candidates_collected = read.builder->keepsAssociationCandidates();
-  job.candidates = read.builder->takeCandidates();
+  job.candidates = inOfferOrder(read.builder->takeCandidates(), read.builder->takeSkippedFrames());
   job.initial = initial;
   job.parameters = params;
   if (reference) job.reference = JobReference{*reference, "file", options.reference};

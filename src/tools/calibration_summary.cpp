@@ -36,7 +36,11 @@ std::string formatCalibrationSummary(const SummaryInput& in) {
     s << "  pairs by rule    counts " << p.counts << ", association " << p.association;
     if (p.mode == PairingMode::kAssociation) {
       s << " (of " << p.candidates << " frames the count rule did not keep; " << p.rounds << " round"
-        << (p.rounds == 1 ? "" : "s") << (p.converged ? "" : ", still changing") << ")";
+        << (p.rounds == 1 ? "" : "s") << (p.converged ? "" : ", still changing");
+      if (p.final_round) {
+        s << "; final round over them and " << p.skipped_frames << " skipped frames: +" << p.final_round_pairs;
+      }
+      s << ")";
     } else {
       s << " (pairing counts)";
     }

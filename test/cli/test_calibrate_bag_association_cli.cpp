@@ -2,8 +2,9 @@
 // people, false clusters and mask blobs: many frames with unequal counts): the default run adds
 // association pairs and says how many each rule made (result keys, summary line, each pair's
 // rule); pairing counts and refine none are the count rule alone; a wrong initial extrinsic
-// (5 deg, 30 cm off) is refused with a note and the result still lands at the truth; the new
-// keys' bad values are one line each.
+// (5 deg, 30 cm off) is refused with a note and the result still lands at the truth; the final
+// round (issue 24) pairs the skipped frames and says so, and is off when asked; the new keys' bad
+// values are one line each.
 
 #include "cli_run.hpp"
 #include "../support/test_files.hpp"
@@ -67,6 +68,25 @@ TEST_F(CalibrateBagAssociationCli, TheDefaultRunAddsAssociationPairsAndSaysHowMa
                        std::to_string(association) + " (of "),
             std::string::npos)
       << r.out;
+  // The final round: the skipped frames held, the pairs it added among the association's.
+  const int skipped = y["association"]["skipped_frames"].as<int>();
+  const int added = y["association"]["final_round_pairs"].as<int>();
+  EXPECT_TRUE(y["association"]["final_round"].as<bool>());
+  EXPECT_GT(skipped, 50);  // skip_frames 3 after each of the count rule's pairs
+  EXPECT_GT(added, 50);
+  EXPECT_LE(added, association);
+  EXPECT_NE(r.out.find(" skipped frames: +" + std::to_string(added) + ")"), std::string::npos) << r.out;
+}
+
+TEST_F(CalibrateBagAssociationCli, WithoutTheFinalRoundTheSkippedFramesStaySkipped) {
+  const RunResult r = calibrate("no_final", "association_final_round: false\n");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const YAML::Node y = YAML::LoadFile(dir_ + "/no_final.yaml");
+  EXPECT_FALSE(y["association"]["final_round"].as<bool>());
+  EXPECT_EQ(y["association"]["skipped_frames"].as<int>(), 0);
+  EXPECT_EQ(y["association"]["final_round_pairs"].as<int>(), 0);
+  EXPECT_GE(y["pairs_by_rule"]["association"].as<int>(), 10);
+  EXPECT_EQ(r.out.find("final round"), std::string::npos) << r.out;
 }
 
 TEST_F(CalibrateBagAssociationCli, PairingCountsAndThePaperModeAreTheCountRuleAlone) {
@@ -113,6 +133,7 @@ TEST_F(CalibrateBagAssociationCli, BadAssociationValuesAreOneLineEach) {
                {"association_margin: 2\n", "association_margin"},
                {"association_min_overlap: -0.1\n", "association_min_overlap"},
                {"association_max_rounds: 0\n", "association_max_rounds"},
+               {"association_final_round: sometimes\n", "association_final_round"},
                {"initial_extrinsic_min_agreement: 1.5\n", "initial_extrinsic_min_agreement"},
                {"initial_extrinsic_file: /nonexistent/start.yaml\n", "initial_extrinsic_file"}};
   for (const auto& c : cases) {

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace thermal_lidar_calibration;
@@ -202,4 +203,51 @@ TEST(AssociationRefit, TheResultCountsTheRingAliasCheckOfEveryFit) {
   const int refits = r.converged ? r.rounds - 1 : r.rounds;
   EXPECT_EQ(r.result.ring_alias_tried, 4 * (1 + refits));
   EXPECT_LT(rotationErrorRad(r.result.extrinsic, fieldsafeTruth()), 0.3 * kDeg);  // sane (quick config)
+}
+
+// Issue 24: the frames the skip rule passed over (outside_skip_rule) wait for the final round. The
+// rounds never pair them; the final round pairs them at the rounds' extrinsic, marks every pair
+// the rounds did not make, and its refinement stays at the truth. Without it they are left alone.
+TEST(AssociationRefit, TheFinalRoundPairsTheSkippedFramesAfterTheRoundsAndMarksThem) {
+  const auto counts = countPairs(30, 8);
+  const auto spaced = candidates(40, 21);  // at 100 i + 50
+  std::vector<CalibrationPair> skipped = candidates(30, 33);
+  for (std::size_t i = 0; i < skipped.size(); ++i) {
+    skipped[i].candidate_index = 100 * i + 51;  // beside the spaced ones, within skip_frames
+    skipped[i].outside_skip_rule = true;
+  }
+  std::vector<CalibrationPair> frames = spaced;
+  frames.insert(frames.end(), skipped.begin(), skipped.end());
+  std::sort(frames.begin(), frames.end(), [](const CalibrationPair& a, const CalibrationPair& b) {
+    return a.candidate_index < b.candidate_index;
+  });
+  const auto beside = [](const CalibrationPair& p) { return p.candidate_index % 100 == 51; };
+
+  PairingConfig without;
+  without.final_round = false;
+  const AssociatedCalibration rounds_only =
+      calibrateWithAssociation(fieldsafeCamera(), counts, frames, quickConfig(), without, PairingLimits{});
+  EXPECT_FALSE(rounds_only.final_round);
+  EXPECT_EQ(std::count_if(rounds_only.pairs.begin(), rounds_only.pairs.end(), beside), 0);
+
+  const AssociatedCalibration r =
+      calibrateWithAssociation(fieldsafeCamera(), counts, frames, quickConfig(), PairingConfig{}, PairingLimits{});
+  EXPECT_TRUE(r.final_round);
+  EXPECT_EQ(r.rounds, rounds_only.rounds);  // the rounds did not see the skipped frames
+  const auto paired_beside = std::count_if(r.pairs.begin(), r.pairs.end(), beside);
+  EXPECT_GE(paired_beside, 20);
+  std::size_t marked = 0;
+  for (const CalibrationPair& p : r.pairs) {
+    if (beside(p)) EXPECT_TRUE(p.outside_skip_rule) << p.candidate_index;
+    if (p.rule == PairRule::kCounts) EXPECT_FALSE(p.outside_skip_rule) << p.candidate_index;
+    marked += p.outside_skip_rule ? 1 : 0;
+  }
+  EXPECT_EQ(r.final_round_pairs, marked);
+  EXPECT_GE(marked, static_cast<std::size_t>(paired_beside));
+  EXPECT_EQ(r.pairs.size(), r.counts_pairs + r.association_pairs);
+  EXPECT_EQ(r.result.pairs_collected, r.pairs.size());
+  for (std::size_t i = 1; i < r.pairs.size(); ++i) EXPECT_LT(r.pairs[i - 1].candidate_index, r.pairs[i].candidate_index);
+  EXPECT_LT(rotationErrorRad(r.result.extrinsic, fieldsafeTruth()), 0.2 * kDeg);
+  EXPECT_LT(translationErrorM(r.result.extrinsic, fieldsafeTruth()), 0.03);
+  EXPECT_GT(r.result.evaluations, rounds_only.result.evaluations);  // the final refinement's work counts
 }

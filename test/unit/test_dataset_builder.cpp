@@ -408,6 +408,52 @@ TEST(DatasetBuilder, BoundedCandidatesStayEvenlySpreadOverTheDriveAndDropsAreCou
   EXPECT_THROW(builder.keepAssociationCandidates(true, 0), std::invalid_argument);
 }
 
+// Issue 24: with candidates and skipped frames kept, the frames the skip rule passes over are
+// decoded and held apart from the candidates (outside_skip_rule, no image); the gate's decisions
+// and counts are what they were. A skipped frame without people in both modalities, that cannot
+// be decoded or with other ids is left out without a word: it was never going to be kept.
+TEST(DatasetBuilder, SkippedFramesAreHeldApartWhenAskedAndTheGateCountsNothingNew) {
+  for (const bool keep : {false, true}) {
+    tlc::DatasetBuilder builder(camera(), gate(4));
+    builder.keepAssociationCandidates(true);
+    builder.keepSkippedFrames(keep);
+    EXPECT_EQ(builder.keepsSkippedFrames(), keep);
+    EXPECT_EQ(offer(builder, frame(1, 1, 5, 1.0)).decision, GateDecision::kKept);
+    EXPECT_EQ(offer(builder, frame(1, 2, 5, 1.1)).decision, GateDecision::kSkipped);
+    EXPECT_EQ(builder.offer([]() -> tlc::Frame { throw std::invalid_argument("corrupt"); }).decision,
+              GateDecision::kSkipped);
+    EXPECT_EQ(offer(builder, frame(0, 2, 5, 1.3)).decision, GateDecision::kSkipped);
+    EXPECT_EQ(offer(builder, frameWithIds("cam2", "lidar2", 1.4)).decision, GateDecision::kSkipped);
+    EXPECT_EQ(offer(builder, frame(1, 1, 5, 1.5)).decision, GateDecision::kKept);
+    EXPECT_EQ(builder.counts()[GateDecision::kSkipped], 4u);
+    EXPECT_EQ(builder.counts()[GateDecision::kBadMessage], 0u);
+    EXPECT_EQ(builder.pairs().size(), 2u);
+    EXPECT_TRUE(builder.candidates().empty());
+    EXPECT_FALSE(builder.frameIdConflict(1));
+    if (!keep) {
+      EXPECT_TRUE(builder.skippedFrames().empty());
+      continue;
+    }
+    const std::vector<tlc::CalibrationPair> skipped = builder.takeSkippedFrames();
+    ASSERT_EQ(skipped.size(), 1u);
+    EXPECT_EQ(skipped[0].candidate_index, 1u);
+    EXPECT_TRUE(skipped[0].outside_skip_rule);
+    EXPECT_EQ(skipped[0].rule, tlc::PairRule::kAssociation);
+    EXPECT_TRUE(skipped[0].image.empty());
+    EXPECT_TRUE(skipped[0].mask.empty());
+    EXPECT_EQ(skipped[0].regions.type(), CV_16UC1);
+    EXPECT_EQ(skipped[0].points.size(), 10u);
+    EXPECT_TRUE(builder.skippedFrames().empty());
+  }
+  // Without candidates there is no association to pair them.
+  tlc::DatasetBuilder counts_only(camera(), gate(4));
+  counts_only.keepSkippedFrames(true);
+  EXPECT_FALSE(counts_only.keepsSkippedFrames());
+  offer(counts_only, frame(1, 1, 5, 1.0));
+  offer(counts_only, frame(1, 2, 5, 1.1));
+  EXPECT_TRUE(counts_only.skippedFrames().empty());
+}
+
 // ~resume and calibrate_bag on a dataset bag: a stored association candidate is held as one again,
 // at its place in the session that stored it (the skip rule between association pairs counts in
 // it), and live frames are numbered after the stored ones.

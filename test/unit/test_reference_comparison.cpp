@@ -73,3 +73,32 @@ TEST(QualityAssessment, AfterACalibrationTheTruthAsReferenceIsWithinTheIntervals
   EXPECT_FALSE(coverage_only.uncertainty.has_value());
   EXPECT_FALSE(coverage_only.reference.has_value());
 }
+
+// Issue 24: the bootstrap draws only from the pairs the skip rule made. Pairs of the final round
+// (outside_skip_rule) see the scene of the frame beside them again: drawn as if independent they
+// would narrow the intervals without a new scene behind it.
+TEST(QualityAssessment, TheBootstrapLeavesOutThePairsOutsideTheSkipRule) {
+  auto data = pairs(40, 12);
+  for (std::size_t i = 0; i < data.size(); i += 2) data[i].outside_skip_rule = true;
+  CalibrationConfig config;
+  config.algorithm = Algorithm::kPlain;
+  config.evolution.population_size = 150;
+  config.evolution.max_iterations = 100;
+  config.seed = 2;
+  const CalibrationResult result = calibrate(fieldsafeCamera(), data, config);
+  std::size_t spaced_used = 0;
+  for (std::size_t i = 0; i < data.size(); ++i) spaced_used += result.inliers[i] && !data[i].outside_skip_rule ? 1 : 0;
+  ASSERT_GE(spaced_used, 3u);
+  QualityConfig quality;
+  quality.uncertainty.resamples = 20;
+  const QualityAssessment q = assessQuality(fieldsafeCamera(), data, result, quality, 5.0);
+  ASSERT_TRUE(q.uncertainty.has_value());
+  EXPECT_EQ(q.uncertainty->pairs, spaced_used);
+  EXPECT_EQ(q.coverage.pairs, result.pairs_used);  // the rest of the assessment reads them all
+
+  // Fewer than 3 spaced pairs: the bootstrap takes them all rather than none.
+  for (CalibrationPair& p : data) p.outside_skip_rule = true;
+  const QualityAssessment all = assessQuality(fieldsafeCamera(), data, result, quality, 5.0);
+  ASSERT_TRUE(all.uncertainty.has_value());
+  EXPECT_EQ(all.uncertainty->pairs, result.pairs_used);
+}

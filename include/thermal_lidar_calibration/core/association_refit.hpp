@@ -7,7 +7,9 @@
 // not be able to drag a wrong extrinsic into a self-consistent one. An initial extrinsic (a
 // result file the user gives) replaces the first fit only when the count rule's pairs agree
 // with it; otherwise it is refused and the paper's first fit is run, and the note says so.
-// pairing counts, or refine none (the paper's method), is the count rule's fit alone. ROS-free.
+// pairing counts, or refine none (the paper's method), is the count rule's fit alone. Issue 24:
+// candidates marked outside_skip_rule (frames the skip rule passed over) wait for a final round
+// that pairs every frame once the rounds have converged. ROS-free.
 
 #include "thermal_lidar_calibration/core/calibration_config.hpp"
 #include "thermal_lidar_calibration/core/calibration_pair.hpp"
@@ -32,6 +34,9 @@ struct PairingConfig {
   // within threshold_sample_px of it (Eq. 1). At the truth 86 and 100 % of the count rule's pairs
   // do on two raw MS2-like drives (docs/validation/association.md); 5 deg and 30 cm off, none.
   double min_initial_agreement = 0.3;
+  // Issue 24: after the rounds, one association with the skip rule off over every candidate and
+  // skipped frame, and a refinement on that set (calibrateWithAssociation).
+  bool final_round = true;
   static const ParameterRanges<PairingConfig>& ranges();  // checked by validate()
   void validate() const;  // throws std::invalid_argument naming the key and range
 };
@@ -71,6 +76,11 @@ struct AssociatedCalibration {
   bool converged = true;    // the set stopped changing within association_max_rounds
   bool initial_used = false;
   std::string note;         // one line when something differs from the plain path (refused start, ...)
+  // The final round (PairingConfig::final_round): run, the pairs it made that the rounds did not
+  // (outside_skip_rule; counted in association_pairs too), and its refinement's work.
+  bool final_round = false;
+  std::size_t final_round_pairs = 0;
+  std::uint64_t final_round_evaluations = 0, final_round_points = 0;
 };
 
 // Throws std::invalid_argument as calibrate() does (no count-rule pairs, bad config).

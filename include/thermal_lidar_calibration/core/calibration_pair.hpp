@@ -60,6 +60,12 @@ struct CalibrationPair {
   PairRule rule = PairRule::kCounts;
   std::uint64_t candidate_index = 0;
   cv::Mat regions;
+  // Issue 24: a frame or pair the skip rule would not have made: a frame it passed over (held by
+  // DatasetBuilder::keepSkippedFrames for the association's final round), or a pair that round
+  // made within skip_frames of another. Its people stand a few centimetres from where the frame
+  // beside it saw them: it adds ring heights, not an independent scene, so the bootstrap leaves
+  // such pairs out.
+  bool outside_skip_rule = false;
   // `mask`'s distance map, when a caller built it once for every evaluator of the pair (the
   // association's rounds, the quality, the truth's loss); empty: each LossEvaluator builds its own.
   // Whoever changes `mask` resets it.

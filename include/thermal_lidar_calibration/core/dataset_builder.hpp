@@ -97,7 +97,7 @@ class DatasetBuilder {
 
   // Issue 23: also keep the decoded frames the count rule did not keep but that show people in
   // both modalities (unequal counts, more than H_max, a small cluster), as candidates for pairing
-  // by association once an extrinsic is known. Skipped frames stay skipped. Off by default (the
+  // by association once an extrinsic is known (skipped frames: keepSkippedFrames). Off by default (the
   // paper keeps nothing else). `max_candidates` bounds the memory (a candidate holds a decoded
   // image and its regions): when one more would pass it, every second candidate held is dropped,
   // and from then on only every second (then fourth, ...) new one is kept, so those held stay
@@ -110,7 +110,18 @@ class DatasetBuilder {
   // The candidates (rule kAssociation, regions set, mask empty), in time order, handed over;
   // the next ones are spaced (max_candidates) among themselves.
   std::vector<CalibrationPair> takeCandidates();
-  const std::vector<CalibrationPair>& candidates() const { return candidates_; }
+  const std::vector<CalibrationPair>& candidates() const { return candidates_.held; }
+
+  // Issue 24: while candidates are kept, also decode the frames the skip rule passes over and
+  // hold those with people in both modalities (outside_skip_rule set, otherwise candidates
+  // like the others), apart from the candidates, under the same bound: the association's final
+  // round pairs them (association_refit.hpp). The skip rule, the gate's counts and the drift
+  // watch see them as skipped, as before; a skipped frame that cannot be decoded, or with other
+  // frame ids, is left out without a word (it was never going to be kept).
+  void keepSkippedFrames(bool keep) { keep_skipped_ = keep; }
+  bool keepsSkippedFrames() const { return keep_candidates_ && keep_skipped_; }
+  const std::vector<CalibrationPair>& skippedFrames() const { return skipped_.held; }
+  std::vector<CalibrationPair> takeSkippedFrames();
 
   const std::vector<CalibrationPair>& pairs() const { return pairs_; }
   const RejectionCounts& counts() const { return gate_.counts(); }
@@ -131,13 +142,26 @@ class DatasetBuilder {
   CameraModel camera_;
   FrameGate gate_;
   std::vector<CalibrationPair> pairs_;
+  // Frames held under a bound, spread evenly over the drive (keepAssociationCandidates).
+  struct SpacedFrames {
+    std::vector<CalibrationPair> held;
+    std::uint64_t seen = 0;    // frames that reached add(), held or not
+    std::uint64_t stride = 1;  // hold every stride-th of them (doubles when full)
+    // Holds `pair` or passes over it; returns the frames dropped or passed over.
+    std::uint64_t add(CalibrationPair pair, std::size_t bound);
+    std::vector<CalibrationPair> take();  // hands `held` over; the next ones are spaced anew
+  };
   bool keep_candidates_ = false;
-  std::vector<CalibrationPair> candidates_;
+  bool keep_skipped_ = false;
+  SpacedFrames candidates_;
+  SpacedFrames skipped_;
   std::size_t max_candidates_ = std::numeric_limits<std::size_t>::max();
-  std::uint64_t candidates_seen_ = 0;    // candidates that reached keep(), kept or not
-  std::uint64_t candidate_stride_ = 1;   // keep every stride-th of them (doubles when full)
   std::uint64_t candidates_dropped_ = 0;
-  void keepCandidate(CalibrationPair pair);
+  // A frame the skip rule passes over, decoded and held when keepsSkippedFrames().
+  void holdSkippedFrame(const std::function<Frame()>& decode, std::uint64_t index);
+  // A decoded frame as a pair of `rule` (kAssociation: a candidate), through the wait for its
+  // people's motion when there is one, into pairs(), candidates() or skippedFrames().
+  void hold(Frame frame, std::uint64_t index, PairRule rule, int people, bool skipped);
   std::uint64_t offered_ = 0;  // candidate frames offered so far (candidate_index)
   std::string camera_frame_, lidar_frame_;
   bool ids_locked_ = false;

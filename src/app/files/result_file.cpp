@@ -97,6 +97,9 @@ void emitPairing(YAML::Emitter& out, const PairingSummary& p) {
   out << YAML::Key << "candidate_frames" << YAML::Value << p.candidates;
   out << YAML::Key << "rounds" << YAML::Value << p.rounds;
   out << YAML::Key << "converged" << YAML::Value << p.converged;
+  out << YAML::Key << "skipped_frames" << YAML::Value << p.skipped_frames;
+  out << YAML::Key << "final_round" << YAML::Value << p.final_round;
+  out << YAML::Key << "final_round_pairs" << YAML::Value << p.final_round_pairs;
   out << YAML::Key << "initial_extrinsic_used" << YAML::Value << p.initial_used;
   if (!p.note.empty()) out << YAML::Key << "note" << YAML::Value << p.note;
   out << YAML::EndMap;

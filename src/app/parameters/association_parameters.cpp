@@ -27,6 +27,10 @@ void addAssociationRows(ParameterTable<CoreParameters>& t) {
                    "a projected point this close to a region counts as on it");
   association.integer("association_max_rounds", &AssociationConfig::max_rounds, kConfigRange, "",
                       "associate-and-refit rounds at most (they stop when the pairs no longer change)");
+  pairing.boolean("association_final_round", &PairingConfig::final_round,
+                  "after the rounds, the frames skip_frames passed over are paired as well (every frame with people "
+                  "in both modalities, the skip rule off) and the fit refined once more on them; the bootstrap "
+                  "still resamples only the pairs the skip rule made");
   top.text("initial_extrinsic_file", &CoreParameters::initial_extrinsic_file,
            TextRule::optional("start from the paper's first fit"),
            "a result YAML (rotation_vector or rotation_matrix, translation; its time_offset_s) to start "

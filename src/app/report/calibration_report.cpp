@@ -36,12 +36,16 @@ std::string escape(const std::string& s) {
   return out;
 }
 
-// The 3 best and 3 worst pairs by their loss at the result, half size, in a 3 x 2 mosaic.
+// The 3 best and 3 worst pairs by their loss at the result, half size, in a 3 x 2 mosaic: of those
+// with a thermal image when any has one (frames the skip rule passed over hold none).
 cv::Mat overlayMosaic(const ReportInput& in) {
   const auto& pairs = *in.pairs;
   const auto& losses = in.result->pair_losses;
-  std::vector<std::size_t> order(pairs.size());
-  std::iota(order.begin(), order.end(), 0);
+  const bool images = std::any_of(pairs.begin(), pairs.end(), [](const CalibrationPair& p) { return !p.image.empty(); });
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    if (!images || !pairs[i].image.empty()) order.push_back(i);
+  }
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return losses.at(a) < losses.at(b);
   });

@@ -114,7 +114,12 @@ PairingSummary summarise(const CalibrationJobRequest& request, const AssociatedC
   s.mode = associate ? PairingMode::kAssociation : PairingMode::kCounts;
   s.counts = fitted.counts_pairs;
   s.association = fitted.association_pairs;
-  s.candidates = associate ? request.candidates.size() : 0;
+  for (const CalibrationPair& c : request.candidates) {
+    if (!associate) break;
+    (c.outside_skip_rule ? s.skipped_frames : s.candidates) += 1;
+  }
+  s.final_round = fitted.final_round;
+  s.final_round_pairs = fitted.final_round_pairs;
   s.rounds = fitted.rounds;
   s.converged = fitted.converged;
   s.initial_used = fitted.initial_used;

@@ -32,6 +32,11 @@ struct PairingSummary {
   std::size_t counts = 0;
   std::size_t association = 0;
   std::size_t candidates = 0;  // frames association could pair
+  // Issue 24: the frames the skip rule passed over among them, whether the final round ran, and
+  // the pairs it made that the rounds did not (within `association`).
+  std::size_t skipped_frames = 0;
+  bool final_round = false;
+  std::size_t final_round_pairs = 0;
   int rounds = 0;
   bool converged = true;
   bool initial_used = false;

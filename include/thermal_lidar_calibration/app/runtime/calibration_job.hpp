@@ -43,7 +43,9 @@ struct CalibrationJobRequest {
   std::vector<CalibrationPair> pairs;  // the kept pairs, in time order
   // Issue 23: the frames the count rule did not keep, with people in both modalities
   // (DatasetBuilder::takeCandidates), paired by association after the first fit when
-  // parameters.pairing says so. Empty: the count rule's pairs alone.
+  // parameters.pairing says so. Empty: the count rule's pairs alone. The frames the skip rule
+  // passed over (DatasetBuilder::takeSkippedFrames, outside_skip_rule) go among them in time
+  // order (inOfferOrder), for the association's final round.
   std::vector<CalibrationPair> candidates;
   // The front end kept candidates (DatasetBuilder::keepAssociationCandidates): without them the
   // result says association was not applied, rather than that it found nothing.
