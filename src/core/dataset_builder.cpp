@@ -86,9 +86,9 @@ OfferOutcome DatasetBuilder::admit(const std::function<Frame()>& decode, bool st
   const std::uint64_t index = stored && kind.frame_index ? *kind.frame_index : offered_;
   offered_ = std::max(offered_, index + 1);
   outcome.frame_index = index;
-  if (!stored && gate_.consumeSkip()) {
+  if ((!stored && gate_.consumeSkip()) || (stored && kind.skipped)) {
     outcome.decision = GateDecision::kSkipped;
-    if (keepsSkippedFrames()) holdSkippedFrame(decode, index);
+    if (keepsSkippedFrames()) outcome.skipped_held = holdSkippedFrame(decode, index);
     return outcome;
   }
 
@@ -132,7 +132,7 @@ OfferOutcome DatasetBuilder::admit(const std::function<Frame()>& decode, bool st
   return outcome;
 }
 
-void DatasetBuilder::holdSkippedFrame(const std::function<Frame()>& decode, std::uint64_t index) {
+bool DatasetBuilder::holdSkippedFrame(const std::function<Frame()>& decode, std::uint64_t index) {
   Frame frame;
   PeopleCounts people;
   try {
@@ -140,11 +140,12 @@ void DatasetBuilder::holdSkippedFrame(const std::function<Frame()>& decode, std:
     checkFrame(frame, camera_);
     people = countPeople(frame.mask, frame.labels);
   } catch (const std::exception&) {
-    return;  // counted when a frame the gate decides on is bad the same way
+    return false;  // counted when a frame the gate decides on is bad the same way
   }
-  if (people.mask_people == 0 || people.cluster_people == 0) return;
-  if (frame.camera_frame != camera_frame_ || frame.lidar_frame != lidar_frame_) return;
+  if (people.mask_people == 0 || people.cluster_people == 0) return false;
+  if (frame.camera_frame != camera_frame_ || frame.lidar_frame != lidar_frame_) return false;
   hold(std::move(frame), index, PairRule::kAssociation, people.mask_people, true);
+  return true;
 }
 
 void DatasetBuilder::hold(Frame frame, std::uint64_t index, PairRule rule, int people, bool skipped) {

@@ -205,6 +205,8 @@ void CalibrationNode::diagnoseCalibration(NodeDiagnostics::Status& status) const
   if (builder_ && builder_->keepsAssociationCandidates()) {
     status.add("association candidates", builder_->candidates().size());
     status.add("association candidates dropped (~association_max_candidates)", builder_->candidatesDropped());
+    // Issue 24: the frames the skip rule passed over, held for the final round.
+    if (builder_->keepsSkippedFrames()) status.add("skipped frames held", builder_->skippedFrames().size());
   }
   if (result_) {
     status.addf("loss (px)", "%.4f", result_->loss);

@@ -48,10 +48,14 @@ void CalibrationNode::resumeDataset() {
   }
   stored_spacing_.emplace(std::move(stored), params_.core.gate.skip_frames);
   if (!builder_->candidates().empty()) last_candidate_recorded_ = builder_->candidates().back().candidate_index;
+  if (!builder_->skippedFrames().empty()) last_skipped_recorded_ = builder_->skippedFrames().back().candidate_index;
   camera_frame_ = camera_frame;
   lidar_frame_ = lidar_frame;
-  const std::string candidates =
+  std::string candidates =
       builder_->candidates().empty() ? "" : " and " + std::to_string(builder_->candidates().size()) + " association candidates";
+  if (!builder_->skippedFrames().empty()) {
+    candidates += " and " + std::to_string(builder_->skippedFrames().size()) + " skipped frames";
+  }
   ROS_INFO("~resume: reloaded %zu pairs%s from %s", pairs_resumed_, candidates.c_str(), params_.dataset_bag.c_str());
 }
 
@@ -162,25 +166,28 @@ void CalibrationNode::record(const KeptMessages& kept, const CalibrationPair& pa
   }
 }
 
-// Candidates the builder now holds that are not in the bag yet (newer than the last recorded:
-// the builder holds them in frame order and only ever drops some). Their messages wait in
-// candidate_messages_ until their frame is finished; frames at or before the newest finished one
-// are done with, held or passed over by the bound.
+// Candidates and skipped frames the builder now holds that are not in the bag yet (newer than
+// the last recorded: the builder holds each kind in frame order and only ever drops some).
+// Their messages wait in candidate_messages_ until their frame is finished; frames at or before
+// the newest finished one are done with, held or passed over by the bound.
 void CalibrationNode::recordHeldCandidates() {
   if (candidate_messages_.empty()) return;
   std::optional<std::uint64_t> newest_finished;
   if (!builder_->pairs().empty()) newest_finished = builder_->pairs().back().candidate_index;
-  for (const CalibrationPair& candidate : builder_->candidates()) {
-    if (last_candidate_recorded_ && candidate.candidate_index <= *last_candidate_recorded_) continue;
-    last_candidate_recorded_ = candidate.candidate_index;
-    const auto messages = candidate_messages_.find(candidate.candidate_index);
-    if (messages == candidate_messages_.end()) continue;
-    stored_stamps_ns_.insert(static_cast<long long>(messages->second.image->header.stamp.toNSec()));
-    record(messages->second, candidate, StoredFrameKind{true, candidate.candidate_index});
-  }
-  if (last_candidate_recorded_) {
-    newest_finished = std::max(newest_finished.value_or(0), *last_candidate_recorded_);
-  }
+  const auto recordNew = [&](const std::vector<CalibrationPair>& held, std::optional<std::uint64_t>& last,
+                             bool skipped) {
+    for (const CalibrationPair& frame : held) {
+      if (last && frame.candidate_index <= *last) continue;
+      last = frame.candidate_index;
+      const auto messages = candidate_messages_.find(frame.candidate_index);
+      if (messages == candidate_messages_.end()) continue;
+      stored_stamps_ns_.insert(static_cast<long long>(messages->second.image->header.stamp.toNSec()));
+      record(messages->second, frame, StoredFrameKind{true, frame.candidate_index, skipped});
+    }
+    if (last) newest_finished = std::max(newest_finished.value_or(0), *last);
+  };
+  recordNew(builder_->candidates(), last_candidate_recorded_, false);
+  recordNew(builder_->skippedFrames(), last_skipped_recorded_, true);
   if (!newest_finished) return;
   // Frames still waiting for their motion are newer than every finished one.
   candidate_messages_.erase(candidate_messages_.begin(), candidate_messages_.upper_bound(*newest_finished));
@@ -291,7 +298,8 @@ void CalibrationNode::onFrame(const sensor_msgs::Image::ConstPtr& image,
               toString(outcome.decision), outcome.mask_people, outcome.cluster_people);
     // Recorded once the builder holds it (after its motion, within its bound): ~resume and
     // calibrate_bag on the bag pair it by association as this session does.
-    if (outcome.candidate && state_ != CalibrationStatus::MONITORING && recorder_->enabled()) {
+    if ((outcome.candidate || outcome.skipped_held) && state_ != CalibrationStatus::MONITORING &&
+        recorder_->enabled()) {
       candidate_messages_[outcome.frame_index] = {image, mask, clusters};
       recordHeldCandidates();
     }

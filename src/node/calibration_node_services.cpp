@@ -27,6 +27,7 @@ bool CalibrationNode::onReset(std_srvs::Trigger::Request& /*req*/, std_srvs::Tri
   kept_messages_.clear();
   candidate_messages_.clear();
   last_candidate_recorded_.reset();
+  last_skipped_recorded_.reset();
   finished_pairs_ = 0;
   pairs_resumed_ = 0;
   next_fit_pairs_ = 0;

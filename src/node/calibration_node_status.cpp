@@ -54,6 +54,7 @@ std::string CalibrationNode::progressLine() const {
   if (builder_->keepsAssociationCandidates()) {
     s << "; association candidates " << builder_->candidates().size();
     if (builder_->candidatesDropped() > 0) s << " (" << builder_->candidatesDropped() << " dropped for the bound)";
+    if (builder_->keepsSkippedFrames()) s << "; skipped frames held " << builder_->skippedFrames().size();
   }
   return s.str();
 }

@@ -90,6 +90,7 @@ std::string DatasetRecorder::describeOnDisk(std::size_t pairs_kept) const {
     return "the dataset bag " + path_ + " holds " + std::to_string(on_disk.pairs) + " of the " +
            std::to_string(pairs_kept) + " kept pairs" +
            (on_disk.candidates > 0 ? " and " + std::to_string(on_disk.candidates) + " association candidates" : "") +
+           (on_disk.skipped_frames > 0 ? " and " + std::to_string(on_disk.skipped_frames) + " skipped frames" : "") +
            stopped;
   } catch (const std::exception& e) {
     return "the dataset bag cannot be read back: " + std::string(e.what()) + stopped;

@@ -29,6 +29,7 @@ bool fileExists(const std::string& path) { return ::access(path.c_str(), F_OK) =
 
 constexpr const char* kPairText = "pair kept by calibration_node (already gated)";
 constexpr const char* kCandidateText = "association candidate held by calibration_node";
+constexpr const char* kSkippedText = "skipped frame held by calibration_node for the final round";
 constexpr const char* kFrameText = "; frame ";
 
 // One pair as one chunk: all five messages stamped with the image's time.
@@ -47,21 +48,24 @@ std::vector<BagAppender::Message> pairMessages(const sensor_msgs::Image& image,
           BagAppender::message(DatasetBagTopics::kImage, time, image),
           BagAppender::message(DatasetBagTopics::kMask, time, mask),
           BagAppender::message(DatasetBagTopics::kClusters, time, clusters),
-          BagAppender::message(kind.candidate ? DatasetBagTopics::kCandidateMarker : DatasetBagTopics::kMarker,
+          BagAppender::message(kind.skipped     ? DatasetBagTopics::kSkippedMarker
+                               : kind.candidate ? DatasetBagTopics::kCandidateMarker
+                                                : DatasetBagTopics::kMarker,
                                time, marker)};
 }
 
 }  // namespace
 
 std::string datasetMarkerText(const StoredFrameKind& kind) {
-  std::string text = kind.candidate ? kCandidateText : kPairText;
+  std::string text = kind.skipped ? kSkippedText : kind.candidate ? kCandidateText : kPairText;
   if (kind.frame_index) text += kFrameText + std::to_string(*kind.frame_index);
   return text;
 }
 
 StoredFrameKind parseDatasetMarker(const std::string& text) {
   StoredFrameKind kind;
-  kind.candidate = text.rfind(kCandidateText, 0) == 0;
+  kind.skipped = text.rfind(kSkippedText, 0) == 0;
+  kind.candidate = kind.skipped || text.rfind(kCandidateText, 0) == 0;
   const std::size_t at = text.rfind(kFrameText);
   if (at != std::string::npos) {
     const std::string digits = text.substr(at + std::strlen(kFrameText));
@@ -116,7 +120,8 @@ DatasetBagContents readDatasetBag(const std::string& path, bool recover) {
   }
   const std::vector<std::string> topics = {DatasetBagTopics::kImage,      DatasetBagTopics::kMask,
                                            DatasetBagTopics::kClusters,   DatasetBagTopics::kCameraInfo,
-                                           DatasetBagTopics::kMarker,     DatasetBagTopics::kCandidateMarker};
+                                           DatasetBagTopics::kMarker,     DatasetBagTopics::kCandidateMarker,
+                                           DatasetBagTopics::kSkippedMarker};
   rosbag::View view(bag, rosbag::TopicQuery(topics));
   sensor_msgs::Image::ConstPtr image, mask;
   sensor_msgs::PointCloud2::ConstPtr clusters;
@@ -126,7 +131,8 @@ DatasetBagContents readDatasetBag(const std::string& path, bool recover) {
   std::vector<std::uint64_t> frame_times_ns;
   for (const rosbag::MessageInstance& m : view) {
     const std::string& topic = m.getTopic();
-    if (topic == DatasetBagTopics::kMarker || topic == DatasetBagTopics::kCandidateMarker) {
+    if (topic == DatasetBagTopics::kMarker || topic == DatasetBagTopics::kCandidateMarker ||
+        topic == DatasetBagTopics::kSkippedMarker) {
       if (const auto text = m.instantiate<std_msgs::String>()) markers[m.getTime().toNSec()] = text->data;
       continue;
     }
@@ -174,6 +180,7 @@ DatasetBagCounts countDatasetBag(const std::string& path) {
     DatasetBagCounts counts;
     counts.pairs = rosbag::View(bag, rosbag::TopicQuery(DatasetBagTopics::kMarker)).size();
     counts.candidates = rosbag::View(bag, rosbag::TopicQuery(DatasetBagTopics::kCandidateMarker)).size();
+    counts.skipped_frames = rosbag::View(bag, rosbag::TopicQuery(DatasetBagTopics::kSkippedMarker)).size();
     return counts;
   } catch (const rosbag::BagException& e) {
     fail(path, e.what());
@@ -203,10 +210,13 @@ RestoredDataset restoreDataset(DatasetBagContents contents, DatasetBuilder& buil
     const OfferOutcome outcome = builder.restore(std::move(contents.frames[i]), kind);
     if (outcome.decision == GateDecision::kKept) {
       ++restored.pairs;
+    } else if (outcome.skipped_held) {
+      ++restored.skipped_frames;
     } else if (outcome.candidate) {
       ++restored.candidates;
     } else {
-      // A candidate when the builder does not pair by association is left out on purpose.
+      // A candidate when the builder does not pair by association, or a skipped frame when it
+      // runs no final round, is left out on purpose.
       if (outcome.decision == GateDecision::kBadMessage) restored.skipped.push_back(outcome.error);
       continue;
     }

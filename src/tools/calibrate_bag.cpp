@@ -262,7 +262,8 @@ BagPairs readPairs(const CalibrateBagOptions& options, CoreParameters& params, P
   const bool dataset_bag = std::any_of(bag_topics.begin(), bag_topics.end(),
                                        [](const BagTopicInfo& t) {
                                          return t.topic == DatasetBagTopics::kMarker ||
-                                                t.topic == DatasetBagTopics::kCandidateMarker;
+                                                t.topic == DatasetBagTopics::kCandidateMarker ||
+                                                t.topic == DatasetBagTopics::kSkippedMarker;
                                        });
   if (dataset_bag && !options.quiet) {
     std::fprintf(stderr, "calibrate_bag: note: a calibration_node dataset bag: %s\n",

@@ -1,7 +1,8 @@
 // rostests of pairing by association in calibration_node (issue 23; node_association*.test):
 // a drive with realistic noise is played to the node; its result file must count association
 // pairs (the frames the count rule did not keep, paired person by person by the same job
-// calibrate_bag runs), carry no "not applied" note, and land near the generator's truth. With
+// calibrate_bag runs; issue 24: the frames the skip rule passed over too, in the final round),
+// carry no "not applied" note, and land near the generator's truth. With
 // ~initial_from_tf the test first puts a tf between the two frames (the truth, or 5 deg and 30 cm
 // off it): association starts from the truth, and refuses the wrong one with a note; without a
 // tf the node says so in one warning and starts from the paper's first fit.
@@ -90,6 +91,10 @@ TEST(NodeAssociation, PairsByAssociationAndLandsNearTheTruth) {
   EXPECT_EQ(counts + association, y["pairs_collected"].as<int>());
   EXPECT_EQ(y["association"]["pairing"].as<std::string>(), "association");
   EXPECT_GT(y["association"]["candidate_frames"].as<int>(), 0);
+  EXPECT_GT(y["association"]["skipped_frames"].as<int>(), 0);
+  EXPECT_TRUE(y["association"]["final_round"].as<bool>());
+  EXPECT_GT(y["association"]["final_round_pairs"].as<int>(), 0);
+  EXPECT_LE(y["association"]["final_round_pairs"].as<int>(), association);
   const std::string note = y["association"]["note"] ? y["association"]["note"].as<std::string>() : "";
   EXPECT_EQ(note.find("not applied"), std::string::npos) << note;
   const std::string expect_initial = pnh.param<std::string>("expect_initial", "");

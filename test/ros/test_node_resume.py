@@ -87,19 +87,28 @@ def shift_stamps(src, dst):
     return images, round_trips
 
 
-def stored_frames(path):
-    """(pairs, association candidates, newest stamp) the dataset bag's markers list."""
-    pairs = candidates = 0
+def stored_frames(path, with_skipped=False):
+    """(pairs, association candidates, newest stamp) the dataset bag's markers list; with_skipped:
+    (pairs, candidates, skipped frames held for the final round, newest stamp)."""
+    pairs = candidates = skipped = 0
     newest = 0.0
     with rosbag.Bag(path) as bag:
         for topic, msg, t in bag.read_messages(topics=["/thermal_lidar_calibration/dataset_pair",
-                                                        "/thermal_lidar_calibration/dataset_candidate"]):
+                                                        "/thermal_lidar_calibration/dataset_candidate",
+                                                        "/thermal_lidar_calibration/dataset_skipped"]):
             if topic.endswith("candidate"):
                 assert msg.data.startswith("association candidate held by calibration_node; frame "), msg.data
                 candidates += 1
+            elif topic.endswith("skipped"):
+                assert msg.data.startswith("skipped frame held by calibration_node for the final round; frame "), \
+                    msg.data
+                skipped += 1
+                continue  # a skipped frame lies between pairs: not the newest kept one
             else:
                 pairs += 1
             newest = max(newest, t.to_sec())
+    if with_skipped:
+        return pairs, candidates, skipped, newest
     return pairs, candidates, newest
 
 
@@ -221,7 +230,7 @@ class KillAndResume(unittest.TestCase):
         # and so the node's result again, association pairs included, when the bag holds what the
         # fit had (frames that finish while it runs are recorded too, as many as the replay had
         # sent by then: on a loaded machine some).
-        stored_pairs, stored_candidates_end, _ = stored_frames(self.dataset_bag)
+        stored_pairs, stored_candidates_end, stored_skipped_end, _ = stored_frames(self.dataset_bag, True)
         again = os.path.join(self.work, "calibrate_bag.yaml")
         args = [executable("calibrate_bag"), "--bag", self.dataset_bag, "--output", again, "--quiet"]
         for path in rospy.get_param("~config_files").split()[1:]:  # the first is the defaults
@@ -232,8 +241,11 @@ class KillAndResume(unittest.TestCase):
             rerun = yaml.safe_load(f)
         self.assertEqual(rerun["pairs_by_rule"]["counts"], stored_pairs)
         self.assertEqual(rerun["association"]["candidate_frames"], stored_candidates_end)
+        self.assertEqual(rerun["association"]["skipped_frames"], stored_skipped_end)
+        self.assertGreater(stored_skipped_end, 0, "no skipped frame in the dataset bag (final round)")
         same_input = (stored_pairs == result["pairs_by_rule"]["counts"] and
-                      stored_candidates_end == result["association"]["candidate_frames"])
+                      stored_candidates_end == result["association"]["candidate_frames"] and
+                      stored_skipped_end == result["association"]["skipped_frames"])
         if same_input:
             self.assertEqual(rerun["pairs_by_rule"], result["pairs_by_rule"])
             for key in ("rotation_vector", "translation"):
@@ -247,9 +259,10 @@ class KillAndResume(unittest.TestCase):
             node_pairs = set(p["stamp"] for p in result["pairs"] if p["rule"] == "counts")
             rerun_pairs = set(p["stamp"] for p in rerun["pairs"] if p["rule"] == "counts")
             self.assertTrue(node_pairs <= rerun_pairs, "a pair of the node's fit is not in the bag")
-        rospy.loginfo("calibrate_bag on the dataset bag: %d pairs, %d candidates (the node's fit: %d, %d)%s",
-                      stored_pairs, stored_candidates_end, result["pairs_by_rule"]["counts"],
-                      result["association"]["candidate_frames"], ", the same result" if same_input else "")
+        rospy.loginfo("calibrate_bag on the dataset bag: %d pairs, %d candidates, %d skipped frames (the node's "
+                      "fit: %d, %d, %d)%s", stored_pairs, stored_candidates_end, stored_skipped_end,
+                      result["pairs_by_rule"]["counts"], result["association"]["candidate_frames"],
+                      result["association"]["skipped_frames"], ", the same result" if same_input else "")
         rospy.loginfo("resumed %d pairs and %d candidates (%d pairs kept before the kill), finished with %d, "
                       "%d association pairs from before the kill", resumed, stored_candidates, kept_before,
                       result["pairs_by_rule"]["counts"], len(early))

@@ -232,22 +232,31 @@ TEST(DatasetBagWriter, ContinuesABagWrittenByRosbag) {
   EXPECT_TRUE(contents.errors.empty());
 }
 
-// Pairing by association: the frames held as candidates are stored with the pairs, each with
-// its kind and its place among the frames offered; countDatasetBag counts pairs and candidates apart,
-// and a marker from before the frame number was recorded reads as a pair in order.
+// Pairing by association: the frames held as candidates, and the skipped frames held for the
+// final round (issue 24), are stored with the pairs, each with its kind and its place among the
+// frames offered; countDatasetBag counts the three apart, and a marker from before the frame
+// number was recorded reads as a pair in order.
 TEST(DatasetBagWriter, StoresAssociationCandidatesWithTheirKindAndPlace) {
   const std::string dir = tlc::test_support::tempDir("tlc_dataset_kinds_");
   const std::string path = dir + "/dataset.bag";
   {
     DatasetBagWriter writer(path, false);
-    const PairMessages a = makePair(100.0, 1), b = makePair(100.4, 2), c = makePair(101.0, 3);
+    const PairMessages a = makePair(100.0, 1), b = makePair(100.4, 2), c = makePair(101.0, 3),
+                       d = makePair(101.1, 4);
     writer.write(a.image, a.mask, a.clusters, a.info, {false, 8});
     writer.write(b.image, b.mask, b.clusters, b.info, {true, 12});
     writer.write(c.image, c.mask, c.clusters, c.info, {false, 17});
+    writer.write(d.image, d.mask, d.clusters, d.info, {true, 18, true});
   }
   const auto contents = tlc::ros_io::readDatasetBag(path);
-  ASSERT_EQ(contents.frames.size(), 3u);
-  ASSERT_EQ(contents.kinds.size(), 3u);
+  ASSERT_EQ(contents.frames.size(), 4u);
+  ASSERT_EQ(contents.kinds.size(), 4u);
+  EXPECT_FALSE(contents.kinds[0].skipped);
+  EXPECT_FALSE(contents.kinds[1].skipped);
+  EXPECT_TRUE(contents.kinds[3].candidate);
+  EXPECT_TRUE(contents.kinds[3].skipped);
+  EXPECT_EQ(contents.kinds[3].frame_index, 18u);
+  EXPECT_EQ(tlc::ros_io::countDatasetBag(path).skipped_frames, 1u);
   EXPECT_FALSE(contents.kinds[0].candidate);
   EXPECT_EQ(contents.kinds[0].frame_index, 8u);
   EXPECT_TRUE(contents.kinds[1].candidate);
@@ -263,7 +272,12 @@ TEST(DatasetBagWriter, StoresAssociationCandidatesWithTheirKindAndPlace) {
   EXPECT_FALSE(tlc::ros_io::parseDatasetMarker("pair; frame 12x").frame_index.has_value());
   const tlc::StoredFrameKind round = tlc::ros_io::parseDatasetMarker(tlc::ros_io::datasetMarkerText({true, 40}));
   EXPECT_TRUE(round.candidate);
+  EXPECT_FALSE(round.skipped);
   EXPECT_EQ(round.frame_index, 40u);
+  const tlc::StoredFrameKind skipped =
+      tlc::ros_io::parseDatasetMarker(tlc::ros_io::datasetMarkerText({true, 41, true}));
+  EXPECT_TRUE(skipped.skipped);
+  EXPECT_EQ(skipped.frame_index, 41u);
   std::filesystem::remove_all(dir);
 }
 

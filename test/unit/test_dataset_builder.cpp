@@ -419,10 +419,14 @@ TEST(DatasetBuilder, SkippedFramesAreHeldApartWhenAskedAndTheGateCountsNothingNe
     builder.keepSkippedFrames(keep);
     EXPECT_EQ(builder.keepsSkippedFrames(), keep);
     EXPECT_EQ(offer(builder, frame(1, 1, 5, 1.0)).decision, GateDecision::kKept);
-    EXPECT_EQ(offer(builder, frame(1, 2, 5, 1.1)).decision, GateDecision::kSkipped);
-    EXPECT_EQ(builder.offer([]() -> tlc::Frame { throw std::invalid_argument("corrupt"); }).decision,
-              GateDecision::kSkipped);
-    EXPECT_EQ(offer(builder, frame(0, 2, 5, 1.3)).decision, GateDecision::kSkipped);
+    const tlc::OfferOutcome held = offer(builder, frame(1, 2, 5, 1.1));
+    EXPECT_EQ(held.decision, GateDecision::kSkipped);
+    EXPECT_EQ(held.skipped_held, keep);
+    const tlc::OfferOutcome corrupt = builder.offer([]() -> tlc::Frame { throw std::invalid_argument("corrupt"); });
+    EXPECT_EQ(corrupt.decision, GateDecision::kSkipped);
+    EXPECT_FALSE(corrupt.skipped_held);
+    EXPECT_TRUE(corrupt.error.empty());
+    EXPECT_FALSE(offer(builder, frame(0, 2, 5, 1.3)).skipped_held);
     EXPECT_EQ(offer(builder, frameWithIds("cam2", "lidar2", 1.4)).decision, GateDecision::kSkipped);
     EXPECT_EQ(offer(builder, frame(1, 1, 5, 1.5)).decision, GateDecision::kKept);
     EXPECT_EQ(builder.counts()[GateDecision::kSkipped], 4u);
@@ -482,6 +486,27 @@ TEST(DatasetBuilder, RestoredCandidatesKeepTheirPlaceAndLiveFramesFollowThem) {
   EXPECT_EQ(live.frame_index, 13u);
   ASSERT_EQ(builder.candidates().size(), 2u);
   EXPECT_EQ(builder.candidates()[1].candidate_index, 13u);
+}
+
+// Issue 24, ~resume: a stored skipped frame is held as one again at its place when the builder
+// keeps skipped frames, and left out (still kSkipped) when it does not.
+TEST(DatasetBuilder, RestoredSkippedFramesAreHeldOnlyWhenTheBuilderKeepsThem) {
+  for (const bool keep : {false, true}) {
+    tlc::DatasetBuilder builder(camera(), gate(3));
+    builder.keepAssociationCandidates(true);
+    builder.keepSkippedFrames(keep);
+    EXPECT_EQ(builder.restore(frame(1, 1, 5, 1.0), {false, 7}).decision, GateDecision::kKept);
+    const tlc::OfferOutcome skipped = builder.restore(frame(1, 2, 5, 1.1), {true, 8, true});
+    EXPECT_EQ(skipped.decision, GateDecision::kSkipped);
+    EXPECT_EQ(skipped.skipped_held, keep);
+    EXPECT_FALSE(skipped.candidate);
+    EXPECT_TRUE(builder.candidates().empty());
+    ASSERT_EQ(builder.skippedFrames().size(), keep ? 1u : 0u);
+    if (keep) {
+      EXPECT_EQ(builder.skippedFrames()[0].candidate_index, 8u);
+      EXPECT_TRUE(builder.skippedFrames()[0].outside_skip_rule);
+    }
+  }
 }
 
 TEST(DatasetBuilder, StoredCandidatesAreLeftOutWithoutAssociationAndBecomePairsUnderTodaysCountRule) {

@@ -28,6 +28,9 @@ struct OfferOutcome {
   // association (held, or waiting for its people's motion; held only if the bound allows).
   bool candidate = false;
   std::uint64_t frame_index = 0;  // its place among the frames offered (candidate_index)
+  // Issue 24: a frame the skip rule passed over (kSkipped) was decoded for the final round and
+  // is held, or waits for its people's motion (keepSkippedFrames).
+  bool skipped_held = false;
 };
 
 // How a frame stored by an earlier session (a dataset bag) was kept there.
@@ -37,6 +40,9 @@ struct StoredFrameKind {
   // of either rule counts in it. Unknown in dataset bags written before it was recorded: the
   // stored frames are then numbered in order, as if offered one after another.
   std::optional<std::uint64_t> frame_index;
+  // Issue 24: a frame the skip rule passed over, held for the association's final round (with
+  // `candidate`): restored as one when the builder keeps skipped frames, left out otherwise.
+  bool skipped = false;
 };
 
 // Frames whose ids keep disagreeing with the ids the dataset is locked to (see DatasetBuilder).
@@ -158,7 +164,7 @@ class DatasetBuilder {
   std::size_t max_candidates_ = std::numeric_limits<std::size_t>::max();
   std::uint64_t candidates_dropped_ = 0;
   // A frame the skip rule passes over, decoded and held when keepsSkippedFrames().
-  void holdSkippedFrame(const std::function<Frame()>& decode, std::uint64_t index);
+  bool holdSkippedFrame(const std::function<Frame()>& decode, std::uint64_t index);  // held or waiting
   // A decoded frame as a pair of `rule` (kAssociation: a candidate), through the wait for its
   // people's motion when there is one, into pairs(), candidates() or skippedFrames().
   void hold(Frame frame, std::uint64_t index, PairRule rule, int people, bool skipped);

@@ -164,10 +164,12 @@ class CalibrationNode {
     sensor_msgs::PointCloud2::ConstPtr clusters;
   };
   std::deque<KeptMessages> kept_messages_;
-  // The same for frames offered as association candidates, by frame index: recorded when the
-  // builder holds them (its bound may pass some over), forgotten once frames after them are done.
+  // The same for frames offered as association candidates, and skipped frames decoded for the
+  // final round (issue 24), by frame index: recorded when the builder holds them (its bound may
+  // pass some over), forgotten once frames after them are done.
   std::map<std::uint64_t, KeptMessages> candidate_messages_;
   std::optional<std::uint64_t> last_candidate_recorded_;  // frame index (restored ones included)
+  std::optional<std::uint64_t> last_skipped_recorded_;    // the same for skipped frames
   std::size_t finished_pairs_ = 0;  // builder pairs already handed on (recorded, fitted, watched)
   ros::WallTime last_scan_time_;
   std::size_t pairs_resumed_ = 0;

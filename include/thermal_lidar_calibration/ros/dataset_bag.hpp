@@ -41,6 +41,9 @@ struct DatasetBagTopics {
   // The same for a frame held as an association candidate, on a topic of its own so that the
   // bag's index alone counts the pairs: "association candidate held by calibration_node; frame 124".
   static constexpr const char* kCandidateMarker = "/thermal_lidar_calibration/dataset_candidate";
+  // And for a frame the skip rule passed over, held for the association's final round (issue
+  // 24): "skipped frame held by calibration_node for the final round; frame 125".
+  static constexpr const char* kSkippedMarker = "/thermal_lidar_calibration/dataset_skipped";
 };
 
 // The marker's text for a stored frame, and the kind read back from it (a marker without a frame
@@ -99,7 +102,7 @@ DatasetBagContents readDatasetBag(const std::string& path, bool recover = true);
 // (one marker message per frame, on a topic per kind), for answers that must be true rather than
 // what the writer believes. Throws std::runtime_error naming the bag when it cannot be read.
 struct DatasetBagCounts {
-  std::size_t pairs = 0, candidates = 0;
+  std::size_t pairs = 0, candidates = 0, skipped_frames = 0;
 };
 DatasetBagCounts countDatasetBag(const std::string& path);
 
@@ -108,6 +111,7 @@ DatasetBagCounts countDatasetBag(const std::string& path);
 struct RestoredDataset {
   std::size_t pairs = 0;       // kept as pairs
   std::size_t candidates = 0;  // held as association candidates (before the builder's bound)
+  std::size_t skipped_frames = 0;  // held for the final round (issue 24; before the bound)
   std::vector<std::uint64_t> stamps_ns;  // the exact image stamps of the frames restored
   std::vector<std::string> skipped;      // why a stored frame was not restored, one line each
   bool numbered = false;  // every stored frame carried its frame number (their order and place)
