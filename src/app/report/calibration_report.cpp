@@ -13,7 +13,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <numeric>
 #include <stdexcept>
 
 namespace thermal_lidar_calibration {
@@ -41,7 +40,8 @@ std::string escape(const std::string& s) {
 cv::Mat overlayMosaic(const ReportInput& in) {
   const auto& pairs = *in.pairs;
   const auto& losses = in.result->pair_losses;
-  const bool images = std::any_of(pairs.begin(), pairs.end(), [](const CalibrationPair& p) { return !p.image.empty(); });
+  const bool images =
+      std::any_of(pairs.begin(), pairs.end(), [](const CalibrationPair& p) { return !p.image.empty(); });
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     if (!images || !pairs[i].image.empty()) order.push_back(i);
