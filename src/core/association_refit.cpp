@@ -135,6 +135,7 @@ CalibrationResult firstFit(const CameraModel& camera, const std::vector<Calibrat
 // its history, the work counted).
 void carryOver(const CalibrationResult& first, CalibrationResult& refit) {
   refit.evolution_extrinsic = first.evolution_extrinsic;
+  refit.evolution_full_length = first.evolution_full_length;
   refit.evolution_loss = first.evolution_loss;
   refit.outlier_fits_accepted = first.outlier_fits_accepted;
   std::vector<ConvergenceStep> history = first.history;

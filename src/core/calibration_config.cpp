@@ -68,7 +68,8 @@ const ParameterRanges<RefineConfig>& RefineConfig::ranges() {
       .add("refine_ring_alias_turns", &RefineConfig::ring_alias_turns, IntRange{0, 5})
       .add("refine_outline_px", &RefineConfig::outline_px, closedRange(0, 1))
       .add("refine_ring_end_weight", &RefineConfig::ring_end_weight, closedRange(0, 100))
-      .add("refine_evolution_generations", &RefineConfig::evolution_generations, IntRange{0, 100000});
+      .add("refine_evolution_generations", &RefineConfig::evolution_generations, IntRange{0, 100000})
+      .add("refine_evolution_min_share", &RefineConfig::evolution_min_share, closedRange(0, 1));
   return ranges;
 }
 

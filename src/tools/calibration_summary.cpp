@@ -30,7 +30,10 @@ std::string formatCalibrationSummary(const SummaryInput& in) {
     << in.frames << " synchronized frames)\n";
   s << "  frames           " << in.counts.summary() << "\n";
   s << "  pairs            " << r.pairs_collected << " kept, " << r.pairs_used << " used ("
-    << in.algorithm_text << ")\n";
+    << in.algorithm_text
+    << (r.evolution_full_length ? "; evolution run to max_iterations: the shortened run's fit failed Algorithm 2's test"
+                                : "")
+    << ")\n";
   if (in.pairing) {
     const PairingSummary& p = *in.pairing;
     s << "  pairs by rule    counts " << p.counts << ", association " << p.association;

@@ -251,6 +251,24 @@ TEST_F(CalibrateBagCli, CalibratesASyntheticBag) {
   EXPECT_NEAR(y["truth"]["translation_error_m"].as<double>(),
               (t_vec - tlc_cli_test::truthTranslation()).norm(), 1e-6);
   EXPECT_GE(y["truth"]["loss"].as<double>(), 0.0);
+  // max_iterations 80 < refine_evolution_generations: no shortened evolution, nothing run twice.
+  EXPECT_FALSE(y["evolution"]["full_length"].as<bool>());
+  EXPECT_EQ(r.out.find("evolution run to max_iterations"), std::string::npos) << r.out;
+}
+
+// refine_evolution_min_share 1 asks for every pair within threshold_sample_px of the fit after
+// the one-generation evolution, and a threshold of 0.01 px leaves some outside it: the fit after
+// the full length runs too, and the summary and the result file say so.
+TEST_F(CalibrateBagCli, AShortenedEvolutionsFailedFitIsSaidAndRunToItsFullLength) {
+  BagSpec spec;
+  std::ofstream(dir_ + "/fast.yaml", std::ios::app)
+      << "refine_evolution_generations: 1\nrefine_evolution_min_share: 1.0\nthreshold_sample_px: 0.01\n";
+  const RunResult r = run("--bag '" + bag(spec) + "' --config '" + dir_ + "/fast.yaml' --output '" +
+                          dir_ + "/out.yaml' --algorithm 1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("evolution run to max_iterations: the shortened run's fit failed Algorithm 2's test"),
+            std::string::npos) << r.out;
+  EXPECT_TRUE(YAML::LoadFile(dir_ + "/out.yaml")["evolution"]["full_length"].as<bool>());
 }
 
 TEST_F(CalibrateBagCli, NonFinitePointsAreDroppedNotAnError) {

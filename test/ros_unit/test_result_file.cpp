@@ -27,6 +27,7 @@ tlc::CalibrationResult sampleResult() {
   r.evolution_extrinsic.rotation_vector = Eigen::Vector3d(1.21, -1.09, 1.29);
   r.evolution_extrinsic.translation = Eigen::Vector3d(0.06, -0.3, 0.1);
   r.evolution_loss = 0.91;
+  r.evolution_full_length = true;
   r.pair_losses = {0.5, 4.0, 0.7};
   r.inliers = {true, false, true};
   r.pairs_used = 2;
@@ -87,6 +88,7 @@ TEST(ResultFile, HasEveryInterfaceKeyAndRoundTrips) {
   EXPECT_FALSE(y["pairs"][1]["inlier"].as<bool>());
   EXPECT_EQ(y["parameters"]["population_size"].as<int>(), 500);
   EXPECT_DOUBLE_EQ(y["evolution"]["loss"].as<double>(), 0.91);
+  EXPECT_TRUE(y["evolution"]["full_length"].as<bool>());
 
   // The quaternion and matrix agree with the rotation vector.
   const Eigen::Matrix3d R = r.extrinsic.rotationMatrix();

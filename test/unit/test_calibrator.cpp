@@ -195,7 +195,9 @@ TEST(Calibrate, TheDefaultRunStopsTheEvolutionEarlierThanThePaper) {
     }
     return last;
   };
-  EXPECT_EQ(last_generation(calibrate(fieldsafeCamera(), data, config)), 20);
+  const CalibrationResult short_run = calibrate(fieldsafeCamera(), data, config);
+  EXPECT_EQ(last_generation(short_run), 20);
+  EXPECT_FALSE(short_run.evolution_full_length);  // its refined fit passed Algorithm 2's test
   config.refine.mode = RefineMode::kNone;
   EXPECT_EQ(last_generation(calibrate(fieldsafeCamera(), data, config)), 60);
   config.refine.mode = RefineMode::kLocal;
@@ -204,5 +206,38 @@ TEST(Calibrate, TheDefaultRunStopsTheEvolutionEarlierThanThePaper) {
   config.refine.evolution_generations = 1000;  // never more than iter_max
   EXPECT_EQ(config.evolutionRun().max_iterations, 60);
   config.refine.evolution_generations = -1;
+  EXPECT_THROW(config.validate(), std::invalid_argument);
+}
+
+// One generation leaves the best of a random population, far from any basin, and a refinement
+// held to a few probes cannot leave it: fewer than refine.evolution_min_share of the pairs lie
+// within threshold_sample_px of that fit, so a fit after the paper's full length runs too (what
+// an MS2-like timing drive needed after 200 of 400 generations), and it is the one kept.
+TEST(Calibrate, AFitThatFailsAlgorithm2sTestAfterTheShortEvolutionRunsThePapersLength) {
+  const auto data = pairs(20, 9);
+  CalibrationConfig config;
+  config.algorithm = Algorithm::kPlain;
+  config.evolution.population_size = 300;  // enough to be in the basin after 80 generations
+  config.evolution.max_iterations = 80;
+  config.refine.evolution_generations = 1;
+  config.refine.max_evaluations = 20;
+  config.refine.ring_alias_turns = 0;
+  config.vertical_centring.enabled = false;
+  const CalibrationResult r = calibrate(fieldsafeCamera(), data, config);
+  EXPECT_TRUE(r.evolution_full_length);
+  int last = 0;
+  for (const ConvergenceStep& s : r.history) {
+    if (s.stage == "plain_fit") last = std::max(last, s.step);
+  }
+  EXPECT_EQ(last, 80);
+  std::size_t within = 0;
+  for (double loss : r.pair_losses) within += loss <= config.outlier.threshold_px ? 1 : 0;
+  EXPECT_GE(static_cast<double>(within), config.refine.evolution_min_share * static_cast<double>(data.size()));
+  config.refine.evolution_min_share = 0.0;  // never run again
+  EXPECT_FALSE(calibrate(fieldsafeCamera(), data, config).evolution_full_length);
+  config.refine.evolution_min_share = 0.5;
+  config.refine.evolution_generations = 0;  // the paper's length from the start: nothing to run again
+  EXPECT_FALSE(calibrate(fieldsafeCamera(), data, config).evolution_full_length);
+  config.refine.evolution_min_share = 1.5;
   EXPECT_THROW(config.validate(), std::invalid_argument);
 }

@@ -74,6 +74,12 @@ struct RefineConfig {
   // generations took a third of a run and left the accuracy as it was over 82 synthetic drives
   // (docs/validation/accuracy.md). The paper mode (refine none) always runs iter_max.
   int evolution_generations = 200;
+  // The shortened evolution's fit is kept only when, once refined, at least this share of all the
+  // pairs lies within OutlierConfig::threshold_px of it (Algorithm 2's test, at a lower ratio);
+  // else a fit after iter_max generations runs too. Measured shares at the refined fits: clean
+  // synthetic drives 0.90-0.99, realistic noise 0.64-0.88, a drive whose short evolution ended in
+  // a wrong basin 0.45 (docs/validation/accuracy.md). 0: never run again.
+  double evolution_min_share = 0.5;
   static const ParameterRanges<RefineConfig>& ranges();  // checked by validate()
   void validate() const;
 };

@@ -41,6 +41,10 @@ struct CalibrationResult {
   double loss_bilinear = 0.0;     // Eq. (3) with the sub-pixel rule, on the pairs used
   Extrinsic evolution_extrinsic;  // result of Algorithm 1/2 before refinement
   double evolution_loss = 0.0;    // its Eq. (3), nearest rule, on the pairs used
+  // The default run's fit after its shortened evolution (CalibrationConfig::evolutionRun) failed
+  // Algorithm 2's test on all the pairs, so a fit after the paper's full length was run too and
+  // the one passing it better kept (calibrator.cpp's calibrate()).
+  bool evolution_full_length = false;
   std::vector<double> pair_losses;  // Eq. (1), nearest rule, every input pair at `extrinsic`
   // The pairs used: Algorithm 2's isInlier (all true for Algorithm 1); with refine = local,
   // re-selected after refinement among all pairs by Eq. (1) <= threshold_sample_px.

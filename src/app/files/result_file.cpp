@@ -135,6 +135,7 @@ void emitRun(YAML::Emitter& out, const CalibrationResult& result, const ResultCo
   emitExtrinsic(out, result.evolution_extrinsic);
   out << YAML::Key << "loss" << YAML::Value << result.evolution_loss;
   out << YAML::Key << "outlier_fits_accepted" << YAML::Value << result.outlier_fits_accepted;
+  out << YAML::Key << "full_length" << YAML::Value << result.evolution_full_length;
   out << YAML::EndMap;
   if (result.ring_alias_tried > 0 || result.ring_spacing_rad > 0.0) {
     out << YAML::Key << "ring_alias" << YAML::Value << YAML::Flow << YAML::BeginMap;

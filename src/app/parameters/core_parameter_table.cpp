@@ -269,6 +269,10 @@ void addOptimizerRows(ParameterTable<CoreParameters>& t) {
                  "with refine local, Algorithm 1 runs at most this many generations (and never more than "
                  "max_iterations): the evolution only has to find the basin the refinement then searches; 0: "
                  "max_iterations, as the paper; refine none always runs max_iterations");
+  refine.real("refine_evolution_min_share", &RefineConfig::evolution_min_share, kConfigRange, "",
+              "the shortened evolution's fit is kept when, once refined, at least this share of all the pairs "
+              "lies within threshold_sample_px of it; else a fit after max_iterations generations runs too and "
+              "the fit with the larger share is kept (a short evolution can end in a wrong basin); 0: never");
 }
 
 }  // namespace
