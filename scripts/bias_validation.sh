@@ -12,8 +12,9 @@
 # ~1.4 GB: each is deleted after every --bin has calibrated it, unless --keep-raw.
 # To compare two builds on the same bags, give each one a label and its executables' folder:
 #   --bin before=/path/to/old/devel/lib/thermal_lidar_calibration --bin after=...
-# Without --bin the package is built here and labelled "current". Takes about 1.5 min per
-# calibration on 2 cores (ideal) and longer with --detect; the full table is ~40 per label.
+# Without --bin the package is built here and labelled "current". Ideal drives take about 20 s
+# each, bag included (6 min for seeds 1-5 of both rigs and noises, 2-core VM, 2026-12-01);
+# --detect drives much longer (raw bags and the detectors).
 # Usage: scripts/bias_validation.sh [--rigs "fieldsafe ms2"] [--noise "clean realistic"]
 #          [--inputs "ideal detect"] [--refine local|none] [--bin LABEL=DIR]... [--keep-raw]
 #          [--config LABEL=FILE]...   (FILE's keys for that label's runs, after config/ms2.yaml's)
