@@ -1,6 +1,7 @@
 #include "thermal_lidar_calibration/core/association_refit.hpp"
 
 #include "thermal_lidar_calibration/core/distance_map.hpp"
+#include "thermal_lidar_calibration/core/inlier_selection.hpp"
 #include "thermal_lidar_calibration/core/loss.hpp"
 
 #include <algorithm>
@@ -97,11 +98,7 @@ double agreement(const CameraModel& camera, const std::vector<CalibrationPair>& 
     offset = initial.time_offset_s.value_or(config.time_offset.offset_s);
   }
   const LossEvaluator nearest(camera, pairs, LossConfig{config.behind_camera_penalty_c1, PixelRule::kNearest, offset});
-  std::size_t within = 0;
-  for (std::size_t i = 0; i < pairs.size(); ++i) {
-    within += nearest.pairLoss(i, initial.extrinsic) <= config.outlier.threshold_px ? 1 : 0;
-  }
-  return static_cast<double>(within) / static_cast<double>(pairs.size());
+  return shareWithinThreshold(nearest, initial.extrinsic, config.outlier.threshold_px);
 }
 
 // The first fit: from the initial extrinsic when the count rule's pairs agree with it, else the

@@ -86,8 +86,8 @@ class Reporter {
 // Algorithm 1 or 2 (the paper) run `evolution`'s generations: sets the result's extrinsic,
 // inliers and counts; returns the pairs used.
 std::vector<std::size_t> evolve(const EvolutionConfig& evolution, const LossEvaluator& nearest,
-                                   const CalibrationConfig& config, Rng& rng, Reporter& report,
-                                   CalibrationResult& result) {
+                                const CalibrationConfig& config, Rng& rng, Reporter& report,
+                                CalibrationResult& result) {
   const std::size_t n = nearest.pairCount();
   const int generations = evolution.max_iterations;
   std::vector<std::size_t> used(n);
@@ -361,15 +361,6 @@ LossEvaluator startResult(const CameraModel& camera, const std::vector<Calibrati
   LossConfig loss{config.behind_camera_penalty_c1, PixelRule::kNearest, offset};
   loss.outline_px = config.refine.outline_px;  // read by the refinement's sub-pixel evaluators
   return LossEvaluator(camera, pairs, loss);
-}
-
-// The share of all pairs within threshold_sample_px of `e` (Eq. 1): the test Algorithm 2 puts to
-// a subset's fit on its validation pairs (ratio_solution).
-double shareWithinThreshold(const LossEvaluator& nearest, const Extrinsic& e, double threshold_px) {
-  const std::size_t n = nearest.pairCount();
-  std::size_t within = 0;
-  for (std::size_t i = 0; i < n; ++i) within += nearest.pairLoss(i, e) <= threshold_px ? 1 : 0;
-  return n == 0 ? 0.0 : static_cast<double>(within) / static_cast<double>(n);
 }
 
 // One fit: the evolution for `evolution`'s generations, then (refine local) the refinement and

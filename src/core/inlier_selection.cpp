@@ -35,4 +35,11 @@ std::vector<std::size_t> selectInliers(const LossEvaluator& loss, const Extrinsi
   return inliers;
 }
 
+double shareWithinThreshold(const LossEvaluator& loss, const Extrinsic& estimate, double threshold_px) {
+  const std::size_t n = loss.pairCount();
+  std::size_t within = 0;
+  for (std::size_t i = 0; i < n; ++i) within += loss.pairLoss(i, estimate) <= threshold_px ? 1 : 0;
+  return n == 0 ? 0.0 : static_cast<double>(within) / static_cast<double>(n);
+}
+
 }  // namespace thermal_lidar_calibration

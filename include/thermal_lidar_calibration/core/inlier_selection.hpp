@@ -21,4 +21,9 @@ std::vector<std::size_t> selectInliers(const LossEvaluator& loss, const Extrinsi
                                        double threshold_px,
                                        const std::vector<std::size_t>& candidates);
 
+// The share of all the pairs whose Eq. (1) loss at `estimate` is within the threshold: the test
+// Algorithm 2 puts to a subset's fit (ratio_solution), also asked of an initial extrinsic and of
+// the default run's fit after its shortened evolution. 0 without pairs.
+double shareWithinThreshold(const LossEvaluator& loss, const Extrinsic& estimate, double threshold_px);
+
 }  // namespace thermal_lidar_calibration
