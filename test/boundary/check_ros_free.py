@@ -73,7 +73,10 @@ class Checker:
         """None when clean, else a one-line report."""
         if self.why_ros(path):
             return "%s is itself on the ROS side" % path
-        cmd = [self.compiler, "-std=c++17", "-fopenmp", "-x", "c++", "-E", "-H", "-o", os.devnull]
+        # -fdirectives-only: the includes and conditionals are processed as usual (the same
+        # headers are listed) but macros are not expanded in the text: a quarter of the CPU time.
+        cmd = [self.compiler, "-std=c++17", "-fopenmp", "-x", "c++", "-E", "-fdirectives-only", "-H",
+               "-o", os.devnull]
         cmd += self.include_flags + [path]
         proc = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
                               universal_newlines=True)
