@@ -15,6 +15,9 @@
 # Without --bin the package is built here and labelled "current". Ideal drives take about 20 s
 # each, bag included (6 min for seeds 1-5 of both rigs and noises, 2-core VM, 2026-12-01);
 # --detect drives much longer (raw bags and the detectors).
+# --noise takes the generator's presets (clean, realistic) and, to see which part of the realistic
+# preset moves the result, each of its parts alone on a clean drive: range_noise (2 cm),
+# mask_edges (+-2 px), misses (3 %), false_clusters (3 %), false_masks (2 %).
 # Usage: scripts/bias_validation.sh [--rigs "fieldsafe ms2"] [--noise "clean realistic"]
 #          [--inputs "ideal detect"] [--refine local|none] [--bin LABEL=DIR]... [--keep-raw]
 #          [--config LABEL=FILE]...   (FILE's keys for that label's runs, after config/ms2.yaml's)
@@ -39,7 +42,7 @@ while [ $# -gt 0 ]; do
     --bin) bins+=("$2"); shift 2 ;;
     --config) label_config["${2%%=*}"]="$(realpath "${2#*=}")"; shift 2 ;;
     --keep-raw) keep_raw=1; shift ;;
-    -h|--help) sed -n '2,20p' "${BASH_SOURCE[0]}"; exit 0 ;;
+    -h|--help) sed -n '2,24p' "${BASH_SOURCE[0]}"; exit 0 ;;
     *) seeds+=("$1"); shift ;;
   esac
 done
@@ -55,6 +58,18 @@ make_bag="${bins[0]#*=}/make_synthetic_bag"
 
 labels=()
 for b in "${bins[@]}"; do labels+=("${b%%=*}"); done
+
+# The generator's options for a --noise name: a preset, or one part of the realistic preset alone.
+noise_options() {  # name
+  case "$1" in
+    range_noise) echo "--noise clean --range-noise-m 0.02" ;;
+    mask_edges) echo "--noise clean --mask-edge-px 2" ;;
+    misses) echo "--noise clean --miss-rate 0.03" ;;
+    false_clusters) echo "--noise clean --false-cluster-rate 0.03" ;;
+    false_masks) echo "--noise clean --false-mask-rate 0.02" ;;
+    *) echo "--noise $1" ;;
+  esac
+}
 
 calibrate() {  # label dir bag truth rig input noise seed
   local label=$1 dir=$2 bag=$3 truth=$4 rig=$5 input=$6 noise=$7 seed=$8
@@ -91,7 +106,8 @@ for rig in $rigs; do
         [ $pending -eq 1 ] || continue
         if [ ! -s "$bag" ] || [ ! -s "$truth" ]; then
           echo "== making $bag" >&2
-          "$make_bag" "${gen_args[@]}" --rig "$rig" --noise "$noise" --seed "$seed" \
+          # shellcheck disable=SC2046  # the options are words
+          "$make_bag" "${gen_args[@]}" --rig "$rig" $(noise_options "$noise") --seed "$seed" \
             --output "$bag" --truth "$truth" > "$out/bags/$kind.$rig.$noise.$seed.log" 2>&1
         fi
         for b in "${bins[@]}"; do
