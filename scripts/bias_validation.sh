@@ -17,7 +17,8 @@
 # --detect drives much longer (raw bags and the detectors).
 # --noise takes the generator's presets (clean, realistic) and, to see which part of the realistic
 # preset moves the result, each of its parts alone on a clean drive: range_noise (2 cm),
-# mask_edges (+-2 px), misses (3 %), false_clusters (3 %), false_masks (2 %).
+# mask_edges (+-2 px), misses (3 %), false_clusters (3 %), false_masks (2 %); and the mask edges
+# one way only: masks_grown (dilated 0-2 px), masks_shrunk (eroded 0-2 px).
 # Usage: scripts/bias_validation.sh [--rigs "fieldsafe ms2"] [--noise "clean realistic"]
 #          [--inputs "ideal detect"] [--refine local|none] [--bin LABEL=DIR]... [--keep-raw]
 #          [--config LABEL=FILE]...   (FILE's keys for that label's runs, after config/ms2.yaml's)
@@ -42,7 +43,7 @@ while [ $# -gt 0 ]; do
     --bin) bins+=("$2"); shift 2 ;;
     --config) label_config["${2%%=*}"]="$(realpath "${2#*=}")"; shift 2 ;;
     --keep-raw) keep_raw=1; shift ;;
-    -h|--help) sed -n '2,24p' "${BASH_SOURCE[0]}"; exit 0 ;;
+    -h|--help) sed -n '2,25p' "${BASH_SOURCE[0]}"; exit 0 ;;
     *) seeds+=("$1"); shift ;;
   esac
 done
@@ -64,6 +65,8 @@ noise_options() {  # name
   case "$1" in
     range_noise) echo "--noise clean --range-noise-m 0.02" ;;
     mask_edges) echo "--noise clean --mask-edge-px 2" ;;
+    masks_grown) echo "--noise clean --mask-edge-px 2 --mask-edge-sign grow" ;;
+    masks_shrunk) echo "--noise clean --mask-edge-px 2 --mask-edge-sign shrink" ;;
     misses) echo "--noise clean --miss-rate 0.03" ;;
     false_clusters) echo "--noise clean --false-cluster-rate 0.03" ;;
     false_masks) echo "--noise clean --false-mask-rate 0.02" ;;

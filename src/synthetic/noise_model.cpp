@@ -50,7 +50,23 @@ NoiseConfig NoiseConfig::preset(const std::string& name) {
   throw std::invalid_argument("unknown noise preset '" + name + "' (use clean or realistic)");
 }
 
-void perturbMaskEdges(cv::Mat& id_mask, int max_px, std::mt19937_64& rng) {
+MaskEdgeSign maskEdgeSignByName(const std::string& name) {
+  if (name == "both") return MaskEdgeSign::kBoth;
+  if (name == "grow") return MaskEdgeSign::kGrow;
+  if (name == "shrink") return MaskEdgeSign::kShrink;
+  throw std::invalid_argument("unknown mask edge sign '" + name + "' (use both, grow or shrink)");
+}
+
+const char* maskEdgeSignName(MaskEdgeSign sign) {
+  switch (sign) {
+    case MaskEdgeSign::kGrow: return "grow";
+    case MaskEdgeSign::kShrink: return "shrink";
+    case MaskEdgeSign::kBoth: break;
+  }
+  return "both";
+}
+
+void perturbMaskEdges(cv::Mat& id_mask, int max_px, std::mt19937_64& rng, MaskEdgeSign sign) {
   if (max_px <= 0 || id_mask.empty()) return;
   cv::Mat ids32;
   id_mask.convertTo(ids32, CV_32S);
@@ -61,7 +77,8 @@ void perturbMaskEdges(cv::Mat& id_mask, int max_px, std::mt19937_64& rng) {
       if (row[c] != 0) ids.insert(row[c]);
     }
   }
-  std::uniform_int_distribution<int> amount(-max_px, max_px);
+  std::uniform_int_distribution<int> amount(sign == MaskEdgeSign::kGrow ? 0 : -max_px,
+                                            sign == MaskEdgeSign::kShrink ? 0 : max_px);
   cv::Mat out = ids32.clone();
   for (const int id : ids) {
     const int k = amount(rng);

@@ -112,6 +112,7 @@ std::string makeSyntheticBagUsage() {
       "                           3% missed people, 3% false clusters, 2% false mask blobs)\n"
       "  --range-noise-m X        LiDAR range noise sigma, m (overrides the preset)\n"
       "  --mask-edge-px N         random dilate/erode of each person mask by 0..N px\n"
+      "  --mask-edge-sign S       both (default) | grow (dilate only) | shrink (erode only)\n"
       "  --miss-rate P            per person, per frame, per modality miss probability\n"
       "  --false-cluster-rate P   probability a post/bush in range is reported as a person cluster\n"
       "  --false-mask-rate P      per frame probability of a false person blob in the mask\n"
@@ -192,6 +193,8 @@ MakeSyntheticBagOptions parseMakeSyntheticBagOptions(const std::vector<std::stri
       o.range_noise_m = parseDouble(a, value(), 0.0, 1.0);
     } else if (a == "--mask-edge-px") {
       o.mask_edge_px = static_cast<int>(parseInt(a, value(), 0, 20));
+    } else if (a == "--mask-edge-sign") {
+      o.mask_edge_sign = oneOf(a, value(), {"both", "grow", "shrink"});
     } else if (a == "--miss-rate") {
       o.miss_rate = parseDouble(a, value(), 0.0, 1.0);
     } else if (a == "--false-cluster-rate") {
@@ -254,6 +257,7 @@ syn::SyntheticConfig syntheticConfigFrom(const MakeSyntheticBagOptions& o) {
   c.noise = syn::NoiseConfig::preset(o.noise);
   if (o.range_noise_m >= 0) c.noise.range_sigma_m = o.range_noise_m;
   if (o.mask_edge_px >= 0) c.noise.mask_edge_px = o.mask_edge_px;
+  c.noise.mask_edge_sign = syn::maskEdgeSignByName(o.mask_edge_sign);
   if (o.miss_rate >= 0) c.noise.miss_rate = o.miss_rate;
   if (o.false_cluster_rate >= 0) c.noise.false_cluster_rate = o.false_cluster_rate;
   if (o.false_mask_rate >= 0) c.noise.false_mask_rate = o.false_mask_rate;

@@ -252,6 +252,48 @@ TEST(SyntheticRig, NoiseOptionsChangeWhatTheyShould) {
   EXPECT_GT(compared, 0);
 }
 
+// Grown masks only add pixels, shrunk ones only remove them; both ways does either, from the same
+// draws as before the option existed (the realistic drives are the same bags).
+TEST(SyntheticRig, MaskEdgesMoveTheWayAsked) {
+  cv::Mat ids(120, 160, CV_16UC1, cv::Scalar(0));
+  for (int id = 1; id <= 6; ++id) {
+    cv::ellipse(ids, cv::Point(20 + 24 * (id - 1), 60), cv::Size(8, 30), 0, 0, 360, cv::Scalar(id), cv::FILLED);
+  }
+  const int before = cv::countNonZero(ids);
+  int grown_removed = 0, shrunk_added = 0, both_grew = 0, both_shrank = 0;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    for (const syn::MaskEdgeSign sign : {syn::MaskEdgeSign::kGrow, syn::MaskEdgeSign::kShrink, syn::MaskEdgeSign::kBoth}) {
+      cv::Mat m = ids.clone();
+      std::mt19937_64 rng(seed);
+      syn::perturbMaskEdges(m, 2, rng, sign);
+      for (int id = 1; id <= 6; ++id) {
+        const int was = cv::countNonZero(ids == id), now = cv::countNonZero(m == id);
+        const cv::Mat lost = (ids == id) & (m != id), gained = (m == id) & (ids != id);
+        if (sign == syn::MaskEdgeSign::kGrow) grown_removed += cv::countNonZero(lost);
+        if (sign == syn::MaskEdgeSign::kShrink) shrunk_added += cv::countNonZero(gained);
+        if (sign == syn::MaskEdgeSign::kBoth) {
+          both_grew += now > was;
+          both_shrank += now < was;
+        }
+      }
+    }
+  }
+  EXPECT_GT(before, 0);
+  EXPECT_EQ(grown_removed, 0);
+  EXPECT_EQ(shrunk_added, 0);
+  EXPECT_GT(both_grew, 0);
+  EXPECT_GT(both_shrank, 0);
+  // The default is both ways, drawn as before.
+  cv::Mat a = ids.clone(), b = ids.clone();
+  std::mt19937_64 ra(7), rb(7);
+  syn::perturbMaskEdges(a, 2, ra);
+  syn::perturbMaskEdges(b, 2, rb, syn::MaskEdgeSign::kBoth);
+  EXPECT_EQ(cv::countNonZero(a != b), 0);
+  EXPECT_EQ(syn::maskEdgeSignByName("shrink"), syn::MaskEdgeSign::kShrink);
+  EXPECT_STREQ(syn::maskEdgeSignName(syn::MaskEdgeSign::kGrow), "grow");
+  EXPECT_THROW(syn::maskEdgeSignByName("inward"), std::invalid_argument);
+}
+
 TEST(SyntheticRig, PresetsAndBadConfigs) {
   EXPECT_THROW(syn::rigByName("kitti"), std::invalid_argument);
   EXPECT_THROW(syn::NoiseConfig::preset("noisy"), std::invalid_argument);

@@ -10,9 +10,14 @@
 namespace thermal_lidar_calibration {
 namespace synthetic {
 
+// Which way a person's mask edge may move: both (a segmentation that is sometimes too large,
+// sometimes too small), or only one way (to see what each does to a calibration).
+enum class MaskEdgeSign { kBoth, kGrow, kShrink };
+
 struct NoiseConfig {
   double range_sigma_m = 0.0;       // Gaussian noise along each LiDAR ray, m
   int mask_edge_px = 0;             // each person's mask dilated/eroded by a random 0..N px
+  MaskEdgeSign mask_edge_sign = MaskEdgeSign::kBoth;  // kGrow: dilated only; kShrink: eroded only
   double miss_rate = 0.0;           // per person, per frame, per modality: detector misses it
   double false_cluster_rate = 0.0;  // per clutter object in range, per frame: reported as a person
   double false_mask_rate = 0.0;     // per frame: one false person blob in the mask
@@ -28,8 +33,13 @@ struct NoiseConfig {
 };
 
 // Grows (k > 0) or shrinks (k < 0) each id's region of `id_mask` (CV_8UC1 or CV_16UC1) by an
-// independent random k in [-max_px, max_px]. Growing only claims background pixels.
-void perturbMaskEdges(cv::Mat& id_mask, int max_px, std::mt19937_64& rng);
+// independent random k in [-max_px, max_px] (kGrow: [0, max_px]; kShrink: [-max_px, 0]). Growing
+// only claims background pixels.
+void perturbMaskEdges(cv::Mat& id_mask, int max_px, std::mt19937_64& rng,
+                      MaskEdgeSign sign = MaskEdgeSign::kBoth);
+// "both", "grow" or "shrink" (and back); anything else throws std::invalid_argument.
+MaskEdgeSign maskEdgeSignByName(const std::string& name);
+const char* maskEdgeSignName(MaskEdgeSign sign);
 // Draws a filled ellipse with value `id` somewhere in the mask (a false person blob).
 void addFalseMaskBlob(cv::Mat& id_mask, int id, std::mt19937_64& rng);
 
