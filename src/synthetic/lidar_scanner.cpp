@@ -13,12 +13,21 @@ ScanGrid::ScanGrid(const LidarModel& lidar, double ground_z)
              std::numeric_limits<double>::infinity()),
       owner_(range_.size(), -2) {
   const int azimuths = lidar.azimuth_count;
+  for (const double el : lidar.elevations_rad) {
+    cos_el_.push_back(std::cos(el));
+    sin_el_.push_back(std::sin(el));
+  }
+  for (int a = 0; a < azimuths; ++a) {
+    const double az = lidar.azimuthRad(a);
+    cos_az_.push_back(std::cos(az));
+    sin_az_.push_back(std::sin(az));
+  }
   // Ground: a downward beam meets the plane at the same range for every azimuth.
   for (int b = 0; b < lidar.beamCount(); ++b) {
     const double el = lidar.elevations_rad[b];
     if (el < 0.0) {
       Ray down;
-      down.direction = lidar.direction(b, 0);
+      down.direction = direction(b, 0);
       double t = 0.0;
       if (intersectHorizontalPlane(ground_z, down, &t) && t <= lidar.max_range_m &&
           t >= lidar.min_range_m) {
@@ -56,12 +65,10 @@ void ScanGrid::cast(const Solid& solid, int object, const std::vector<int>* sect
   for (int b = 0; b < beams; ++b) {
     const double el = lidar_.elevations_rad[b];
     if (el < el_lo || el > el_hi) continue;
-    const double ce = std::cos(el), se = std::sin(el);
     for (int ai = a_begin; ai <= a_end; ++ai) {
       const int a = ((ai % azimuths) + azimuths) % azimuths;
       if (sector_of && (*sector_of)[static_cast<std::size_t>(a)] != sector) continue;
-      const double az = lidar_.azimuthRad(a);
-      ray.direction = Eigen::Vector3d(ce * std::cos(az), ce * std::sin(az), se);
+      ray.direction = direction(b, a);
       const std::size_t k = static_cast<std::size_t>(b) * azimuths + a;
       double t = 0.0;
       if (solid.intersect(ray, std::min(range_[k], lidar_.max_range_m), &t) && t >= lidar_.min_range_m) {
@@ -81,7 +88,7 @@ std::vector<LidarReturn> ScanGrid::returns() const {
       const std::size_t k = static_cast<std::size_t>(b) * azimuths + a;
       if (owner_[k] == -2) continue;
       LidarReturn ret;
-      ret.point = (lidar_.direction(b, a) * range_[k]).cast<float>();
+      ret.point = (direction(b, a) * range_[k]).cast<float>();
       ret.range_m = static_cast<float>(range_[k]);
       ret.object = owner_[k];
       ret.beam = b;

@@ -118,6 +118,18 @@ cv::Mat ThermalRenderer::renderOwners(const std::vector<WorldObject>& objects) c
   return owners;
 }
 
+namespace {
+
+// std::lround, without its library call when x is already whole (every grey level is: the scene
+// and the noise are rounded before they are summed); half of a bag's rendering went to lround.
+long roundToLong(double x) {
+  if (!(std::fabs(x) < 1e15)) return std::lround(x);
+  const long whole = static_cast<long>(x);
+  return static_cast<double>(whole) == x ? whole : std::lround(x);
+}
+
+}  // namespace
+
 cv::Mat ThermalRenderer::renderImage(const cv::Mat& owners, const std::vector<WorldObject>& objects,
                                      ImageDepth image_depth, double noise_level, double background_offset,
                                      std::mt19937_64& rng) const {
@@ -127,6 +139,9 @@ cv::Mat ThermalRenderer::renderImage(const cv::Mat& owners, const std::vector<Wo
   std::normal_distribution<float> gauss(0.f, 1.f);
   std::vector<float> column_noise(static_cast<std::size_t>(w));
   for (auto& n : column_noise) n = static_cast<float>(noise_level) * gauss(rng);
+  // Each column's noise rounded once, not once per pixel (the same values).
+  std::vector<float> column_grey(column_noise.size());
+  for (std::size_t u = 0; u < column_noise.size(); ++u) column_grey[u] = std::round(column_noise[u]);
   cv::Mat speckle(h, w, CV_32FC1, cv::Scalar(0));
   std::uniform_int_distribution<int> pick_u(0, w - 1), pick_v(0, h - 1);
   const int speckles = static_cast<int>(kSpeckleFraction * w * h);
@@ -146,16 +161,16 @@ cv::Mat ThermalRenderer::renderImage(const cv::Mat& owners, const std::vector<Wo
         const WorldObject& obj = objects[static_cast<std::size_t>(own[u])];
         grey = std::round(obj.grey_level - (obj.isPerson() ? 10.0 * v / h : 0.0));  // warmer head
       }
-      grey += std::round(column_noise[static_cast<std::size_t>(u)]) + speckle.at<float>(v, u);
+      grey += column_grey[static_cast<std::size_t>(u)] + speckle.at<float>(v, u);
       if (image_depth == ImageDepth::kMono8) {
-        out.at<std::uint8_t>(v, u) = static_cast<std::uint8_t>(std::clamp(std::lround(grey), 0L, 255L));
+        out.at<std::uint8_t>(v, u) = static_cast<std::uint8_t>(std::clamp(roundToLong(grey), 0L, 255L));
       } else if (image_depth == ImageDepth::kMono16Radiometric) {
         const double kelvin = kRawKelvinAtGreyZero + kRawKelvinPerGrey * grey;
         out.at<std::uint16_t>(v, u) =
             static_cast<std::uint16_t>(std::clamp(std::lround(kelvin / kRawKelvinPerCount), 0L, 65535L));
       } else {
         out.at<std::uint16_t>(v, u) =
-            static_cast<std::uint16_t>(std::clamp(std::lround(7000.0 + 16.0 * grey), 0L, 65535L));
+            static_cast<std::uint16_t>(std::clamp(roundToLong(7000.0 + 16.0 * grey), 0L, 65535L));
       }
     }
   }
