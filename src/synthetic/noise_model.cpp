@@ -57,7 +57,7 @@ MaskEdgeSign maskEdgeSignByName(const std::string& name) {
   throw std::invalid_argument("unknown mask edge sign '" + name + "' (use both, grow or shrink)");
 }
 
-const char* maskEdgeSignName(MaskEdgeSign sign) {
+const char* toString(MaskEdgeSign sign) {
   switch (sign) {
     case MaskEdgeSign::kGrow: return "grow";
     case MaskEdgeSign::kShrink: return "shrink";

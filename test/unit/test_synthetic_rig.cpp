@@ -290,7 +290,7 @@ TEST(SyntheticRig, MaskEdgesMoveTheWayAsked) {
   syn::perturbMaskEdges(b, 2, rb, syn::MaskEdgeSign::kBoth);
   EXPECT_EQ(cv::countNonZero(a != b), 0);
   EXPECT_EQ(syn::maskEdgeSignByName("shrink"), syn::MaskEdgeSign::kShrink);
-  EXPECT_STREQ(syn::maskEdgeSignName(syn::MaskEdgeSign::kGrow), "grow");
+  EXPECT_STREQ(syn::toString(syn::MaskEdgeSign::kGrow), "grow");
   EXPECT_THROW(syn::maskEdgeSignByName("inward"), std::invalid_argument);
 }
 

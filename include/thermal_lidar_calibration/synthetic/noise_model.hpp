@@ -37,9 +37,10 @@ struct NoiseConfig {
 // only claims background pixels.
 void perturbMaskEdges(cv::Mat& id_mask, int max_px, std::mt19937_64& rng,
                       MaskEdgeSign sign = MaskEdgeSign::kBoth);
-// "both", "grow" or "shrink" (and back); anything else throws std::invalid_argument.
+// "both", "grow" or "shrink" (and back, as toString(ImageRegion) and toString(LidarStamp)); anything
+// else throws std::invalid_argument.
 MaskEdgeSign maskEdgeSignByName(const std::string& name);
-const char* maskEdgeSignName(MaskEdgeSign sign);
+const char* toString(MaskEdgeSign sign);
 // Draws a filled ellipse with value `id` somewhere in the mask (a false person blob).
 void addFalseMaskBlob(cv::Mat& id_mask, int id, std::mt19937_64& rng);
 
