@@ -27,6 +27,7 @@ def load(path):
         "used": d["pairs_used"],
         "kept": d["pairs_collected"],
         "seconds": d.get("run_time_s", 0.0),
+        "verdict": d.get("verdict", ""),
     }
 
 
@@ -48,6 +49,12 @@ def load_label(out, label):
     return groups
 
 
+def verdicts(runs):
+    known = ["good", "usable", "collect_more"]
+    counts = [sum(r["verdict"] == v for r in runs) for v in known]
+    return "/".join(str(c) for c in counts + [len(runs) - sum(counts)])
+
+
 def held(runs):
     return sum(sum(r["held"]) for r in runs), sum(len(r["held"]) for r in runs)
 
@@ -61,8 +68,8 @@ def main():
     print("Signed difference result - truth, mean (min..max) over the seeds; rotation about the "
           "camera's x, y, z in deg, translation along them in cm; camera x right, y down, z forward.\n")
     print("| rig | noise | input | build | seeds | " + " | ".join(AXES) +
-          " | intervals held | loss px | truth's loss px | pairs used/kept |")
-    print("|" + "---|" * 14)
+          " | intervals held | loss px | truth's loss px | pairs used/kept | verdicts g/u/c/other |")
+    print("|" + "---|" * 15)
     for cell in cells:
         for label in labels:
             runs = by_label[label].get(cell)
@@ -70,11 +77,12 @@ def main():
                 continue
             cols = [cell_text([r["diff"][k] for r in runs], 3 if k < 3 else 2) for k in range(6)]
             h, n = held(runs)
-            print("| %s | %s | %s | %s | %s | %s | %d/%d | %.4f | %.4f | %.0f/%.0f |" % (
+            print("| %s | %s | %s | %s | %s | %s | %d/%d | %.4f | %.4f | %.0f/%.0f | %s |" % (
                 cell[0], cell[1], cell[2], label, " ".join(str(r["seed"]) for r in runs),
                 " | ".join(cols), h, n, statistics.mean(r["loss"] for r in runs),
                 statistics.mean(r["truth_loss"] for r in runs),
-                statistics.mean(r["used"] for r in runs), statistics.mean(r["kept"] for r in runs)))
+                statistics.mean(r["used"] for r in runs), statistics.mean(r["kept"] for r in runs),
+                verdicts(runs)))
     print()
     for label in labels:
         for input_ in ("ideal", "detect"):

@@ -19,8 +19,11 @@
 # preset moves the result, each of its parts alone on a clean drive: range_noise (2 cm),
 # mask_edges (+-2 px), misses (3 %), false_clusters (3 %), false_masks (2 %); and the mask edges
 # one way only: masks_grown (dilated 0-2 px), masks_shrunk (eroded 0-2 px).
+# --frames N drives N frames instead of the generator's 1200 (how the spread falls with the data);
+# its bags and runs are named <noise>_<N>f (realistic_2400f), a row of their own in the table.
 # Usage: scripts/bias_validation.sh [--rigs "fieldsafe ms2"] [--noise "clean realistic"]
 #          [--inputs "ideal detect"] [--refine local|none] [--bin LABEL=DIR]... [--keep-raw]
+#          [--frames N]
 #          [--config LABEL=FILE]...   (FILE's keys for that label's runs, after config/ms2.yaml's)
 #          [SEEDS...]                                        (default seeds 1 2 3 4 5)
 set -euo pipefail
@@ -31,6 +34,7 @@ noises="clean realistic"
 inputs="ideal detect"
 refine=local
 keep_raw=0
+frames=""
 bins=()
 declare -A label_config=()
 seeds=()
@@ -43,7 +47,8 @@ while [ $# -gt 0 ]; do
     --bin) bins+=("$2"); shift 2 ;;
     --config) label_config["${2%%=*}"]="$(realpath "${2#*=}")"; shift 2 ;;
     --keep-raw) keep_raw=1; shift ;;
-    -h|--help) sed -n '2,25p' "${BASH_SOURCE[0]}"; exit 0 ;;
+    --frames) frames="$2"; shift 2 ;;
+    -h|--help) sed -n '2,28p' "${BASH_SOURCE[0]}"; exit 0 ;;
     *) seeds+=("$1"); shift ;;
   esac
 done
@@ -94,12 +99,15 @@ calibrate() {  # label dir bag truth rig input noise seed
 }
 
 for rig in $rigs; do
-  for noise in $noises; do
+  for noise_name in $noises; do
+    noise="$noise_name"
+    [ -n "$frames" ] && noise="${noise_name}_${frames}f"
     for seed in "${seeds[@]}"; do
       for input in $inputs; do
         kind=ideal
         gen_args=()
-        if [ "$input" = detect ]; then kind=raw; gen_args=(--raw); fi
+        [ -n "$frames" ] && gen_args=(--frames "$frames")
+        if [ "$input" = detect ]; then kind=raw; gen_args+=(--raw); fi
         bag="$out/bags/$kind.$rig.$noise.$seed.bag"
         truth="$out/bags/$kind.$rig.$noise.$seed.truth.yaml"
         pending=0
@@ -110,7 +118,7 @@ for rig in $rigs; do
         if [ ! -s "$bag" ] || [ ! -s "$truth" ]; then
           echo "== making $bag" >&2
           # shellcheck disable=SC2046  # the options are words
-          "$make_bag" "${gen_args[@]}" --rig "$rig" $(noise_options "$noise") --seed "$seed" \
+          "$make_bag" "${gen_args[@]}" --rig "$rig" $(noise_options "$noise_name") --seed "$seed" \
             --output "$bag" --truth "$truth" > "$out/bags/$kind.$rig.$noise.$seed.log" 2>&1
         fi
         for b in "${bins[@]}"; do

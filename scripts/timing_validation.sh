@@ -14,7 +14,9 @@
 #   fs_raw_sync                         raw sensors, synchronised: what fs_raw60 compares with
 #   fs_steady60                         60 ms late, steady straight driving, nobody walking
 # Usage: scripts/timing_validation.sh [--cases "A B"] [--noise "clean realistic"]
-#          [--modes "default none"] [SEEDS...]
+#          [--modes "default none"] [--frames N] [SEEDS...]
+# --frames N drives N frames instead of the generator's 1200 (how the spread falls with the data);
+# the runs are named <noise>_<N>f (realistic_2400f), beside the default length's in the same folder.
 # --modes keeps only those of a case's runs (a case without a `none` run ignores `none`), so the
 # costly runs can go first and the rest follow into the same folder. `fixed` (any case, only when
 # asked) is time_offset_mode fixed at the drive's true offset: what is left with the offset known.
@@ -27,12 +29,14 @@ prepare_workspace_unless_bin  # TLC_BIN: executables already built
 cases="fs_late60 fs_early40 fs_sync ms2_late60 ms2_early40 ms2_sync fs_endstamp60 fs_sweep60 fs_raw60 fs_raw_sync fs_steady60"
 noises="clean realistic"
 wanted="default none"
+frames=""
 seeds=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --cases) cases="$2"; shift 2 ;;
     --noise) noises="$2"; shift 2 ;;
     --modes) wanted="$2"; shift 2 ;;
+    --frames) frames="$2"; shift 2 ;;
     *) seeds+=("$1"); shift ;;
   esac
 done
@@ -67,7 +71,9 @@ modes() {  # case -> the runs on its bag
 for case_ in $cases; do
   for noise in $noises; do
     for seed in "${seeds[@]}"; do
+      length=()
       name="$case_.$noise.seed$seed"
+      if [ -n "$frames" ]; then length=(--frames "$frames"); name="$case_.${noise}_${frames}f.seed$seed"; fi
       todo=()
       for mode in $(modes "$case_") fixed; do
         [[ " $wanted " == *" $mode "* ]] || continue
@@ -77,7 +83,7 @@ for case_ in $cases; do
       bag="$out/$name.bag"
       truth="$out/$name.truth.yaml"
       # shellcheck disable=SC2046
-      "$bin/make_synthetic_bag" $(generator "$case_") --noise "$noise" --seed "$seed" \
+      "$bin/make_synthetic_bag" $(generator "$case_") --noise "$noise" "${length[@]}" --seed "$seed" \
         --output "$bag" --truth "$truth" > "$out/$name.gen.log" 2>&1
       for mode in "${todo[@]}"; do
         config=()
