@@ -103,7 +103,8 @@ const ParameterRanges<TimeOffsetConfig>& TimeOffsetConfig::ranges() {
       .add("time_offset_coarse_step_s", &TimeOffsetConfig::coarse_step_s, aboveRange(0, 1))
       .add("time_offset_initial_step_s", &TimeOffsetConfig::initial_step_s, aboveRange(0.0, 1.0))
       .add("time_offset_max_resolution_ms", &TimeOffsetConfig::max_resolution_ms, aboveRange(0, 1e6))
-      .add("time_offset_unresolved_min_gain", &TimeOffsetConfig::unresolved_min_gain, closedRange(0, 1));
+      .add("time_offset_unresolved_min_gain", &TimeOffsetConfig::unresolved_min_gain, closedRange(0, 1))
+      .add("time_offset_keep_start_sigmas", &TimeOffsetConfig::keep_start_sigmas, closedRange(0, 100));
   return ranges;
 }
 

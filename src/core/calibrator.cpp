@@ -187,6 +187,31 @@ void searchOffset(const LossEvaluator& bilinear, const CalibrationConfig& config
   result.time_offset_s = profile.offsets_s[profile.best];
 }
 
+// Issue 21: an estimate within time_offset.keep_start_sigmas resolutions of where the search
+// started cannot be told from the start (a synchronised rig, a millisecond or two off by chance):
+// the pose fitted at the start, its pairs and the start offset are kept, and the note says so.
+// The joint fit would otherwise spend the seventh parameter on noise, which the translation along
+// the travel pays for (speed times the offset's error). Returns whether the start was kept.
+bool keepStartWhenNotTold(const CalibrationConfig& config, double start_s, const Extrinsic& pose_only,
+                          const std::vector<std::size_t>& pose_only_used, std::vector<std::size_t>& used,
+                          CalibrationResult& result) {
+  const double sigmas = config.time_offset.keep_start_sigmas;
+  const double moved_ms = 1000.0 * std::abs(result.time_offset_s - start_s);
+  if (!(sigmas > 0.0) || !std::isfinite(result.time_resolution_ms) || !(moved_ms < sigmas * result.time_resolution_ms)) {
+    return false;
+  }
+  char note[320];
+  std::snprintf(note, sizeof(note),
+                "estimated %+.1f ms, within %.3g resolutions (+-%.3g ms) of %+.1f ms: not told from it, so the "
+                "offset stays there with the pose fitted at it (time_offset_keep_start_sigmas)",
+                1000.0 * result.time_offset_s, sigmas, result.time_resolution_ms, 1000.0 * start_s);
+  result.time_offset_note = note;
+  result.extrinsic = pose_only;
+  result.time_offset_s = start_s;
+  used = pose_only_used;
+  return true;
+}
+
 // Beyond the paper: the local refinement, alternating with the re-selection of the inliers.
 // Algorithm 2 can keep a mismatched pair (equal counts, different people) when neither of its
 // subset fits is accepted; one such pair pulls the optimum by decimetres. So the refinement
@@ -297,8 +322,12 @@ std::vector<std::size_t> refine(const LossEvaluator& paper, const std::vector<Ca
   }
   if (!result.stopped && result.time_offset_mode == TimeOffsetMode::kEstimate &&
       resolvable(nearest, pairs, config, used, result)) {
+    const Extrinsic pose_only = result.extrinsic;
+    const double start_s = result.time_offset_s;
+    const std::vector<std::size_t> pose_only_used = used;
     searchOffset(nearest.withPixelRule(PixelRule::kBilinear), config, used, report, result);
     if (!result.stopped) used = refineRounds(nearest, config, candidates, std::move(used), true, report, result);
+    if (!result.stopped) keepStartWhenNotTold(config, start_s, pose_only, pose_only_used, used, result);
   }
   result.inliers.assign(nearest.pairCount(), false);
   for (std::size_t i : used) result.inliers[i] = true;
@@ -436,6 +465,9 @@ CalibrationResult refineFrom(const CameraModel& camera, const std::vector<Calibr
   }
   CalibrationConfig from = config;
   from.time_offset.offset_s = start_time_offset_s;
+  // An offset not told from the start is kept at the start the user gave (keepStartWhenNotTold):
+  // a fit that starts where an earlier round's estimate ended does not snap back to that.
+  if (start_time_offset_s != config.time_offset.offset_s) from.time_offset.keep_start_sigmas = 0.0;
   from.time_offset.max_s = std::max(from.time_offset.max_s, std::abs(start_time_offset_s));
   CalibrationResult result;
   const TimingPlan timing = planTiming(pairs, from);

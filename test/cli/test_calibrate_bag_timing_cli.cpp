@@ -110,6 +110,7 @@ TEST_F(CalibrateBagTimingCli, BadTimingValuesAreOneLineEach) {
                {"time_offset_s: 3\n", "time_offset_s"},
                {"time_offset_max_s: 0\n", "time_offset_max_s"},
                {"time_offset_s: 0.3\n", "time_offset_s"},  // beyond time_offset_max_s (0.2)
+               {"time_offset_keep_start_sigmas: -1\n", "time_offset_keep_start_sigmas"},
                {"motion_window_scans: 0\n", "motion_window_scans"},
                {"point_time_field: ''\n", "point_time_field"},
                {"monitor_timing_explained_fraction: 2\n", "monitor_timing_explained_fraction"}};

@@ -205,6 +205,29 @@ TEST(TimeOffset, ThePaperModeAndPairsWithoutMotionIgnoreTiming) {
   EXPECT_NE(c.time_offset_note.find("motion"), std::string::npos) << c.time_offset_note;
 }
 
+TEST(TimeOffset, AnOffsetNotToldFromTheStartKeepsTheStartAndItsPose) {
+  // A synchronised camera on a drive that resolves the offset: the joint fit lands a fraction of
+  // a millisecond off by chance, within two resolutions of the start, so the run keeps the start
+  // and the pose fitted there: the same result as the offset fixed at the start.
+  const auto pairs = movingPairs(0.0);
+  const CalibrationResult r = calibrate(fieldsafeCamera(), pairs, quickConfig(TimeOffsetMode::kEstimate));
+  EXPECT_EQ(r.time_offset_mode, TimeOffsetMode::kEstimate) << r.time_offset_note;
+  EXPECT_LT(r.time_resolution_ms, 5.0);
+  EXPECT_EQ(r.time_offset_s, 0.0);
+  EXPECT_NE(r.time_offset_note.find("not told from it"), std::string::npos) << r.time_offset_note;
+  EXPECT_FALSE(r.time_offset_profile_s.empty());  // it was searched all the same
+  const CalibrationResult fixed = calibrate(fieldsafeCamera(), pairs, quickConfig(TimeOffsetMode::kFixed));
+  EXPECT_EQ(r.extrinsic.rotation_vector, fixed.extrinsic.rotation_vector);
+  EXPECT_EQ(r.extrinsic.translation, fixed.extrinsic.translation);
+  // With the rule off the joint fit's own answer stands, inside the band the rule would have kept.
+  CalibrationConfig joint = quickConfig(TimeOffsetMode::kEstimate);
+  joint.time_offset.keep_start_sigmas = 0.0;
+  const CalibrationResult j = calibrate(fieldsafeCamera(), pairs, joint);
+  EXPECT_EQ(j.time_offset_note.find("not told"), std::string::npos) << j.time_offset_note;
+  EXPECT_LT(1000.0 * std::abs(j.time_offset_s), 2.0 * j.time_resolution_ms);
+  // A late camera is far outside the band: estimated (ALateCameraIsRecoveredWithTheExtrinsic).
+}
+
 TEST(TimeOffset, ASteadyDriveKeepsTheStartingOffsetAndSaysWhy) {
   // Straight at one speed past standing people: a late camera is a camera mounted further
   // forward, so estimating would only trade translation for nothing.

@@ -108,6 +108,11 @@ struct TimeOffsetConfig {
   // the loss by at least this fraction (end-of-scan stamps without per-point times, 110 ms off:
   // 57-84 %; steady drives that cannot tell, 0.3-5 %). 1 = never.
   double unresolved_min_gain = 0.25;
+  // An estimate within this many resolutions (1 sigma) of offset_s is not told from it: the pose
+  // fitted at offset_s and the offset itself are kept. On synchronised drives the joint fit's
+  // seventh parameter otherwise costs accuracy for an offset of a millisecond or two (timing.md).
+  // 0 = always the joint fit.
+  double keep_start_sigmas = 2.0;
   static const ParameterRanges<TimeOffsetConfig>& ranges();  // checked by validate()
   void validate() const;
 };

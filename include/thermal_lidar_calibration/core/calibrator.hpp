@@ -99,7 +99,9 @@ CalibrationResult calibrate(const CameraModel& camera, const std::vector<Calibra
 // offset it goes with (the start of the search when time_offset_mode is estimate), as
 // calibrate() refines Algorithm 2's fit. The first inliers are the pairs within
 // threshold_sample_px of `start` (at least the better half). The result's evolution_* fields
-// hold the start. Throws std::invalid_argument as calibrate() does, and for refine none.
+// hold the start. An estimate not told from the start is kept at the start only when that is the
+// config's time_offset_s (time_offset.keep_start_sigmas), not when a later round starts where an
+// earlier one's estimate ended. Throws std::invalid_argument as calibrate() does, and for refine none.
 CalibrationResult refineFrom(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
                              const CalibrationConfig& config, const Extrinsic& start, double start_time_offset_s,
                              const ProgressCallback& progress = {});

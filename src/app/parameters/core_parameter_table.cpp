@@ -100,6 +100,10 @@ void addTimingRows(ParameterTable<CoreParameters>& t) {
   timing.real("time_offset_unresolved_min_gain", &TimeOffsetConfig::unresolved_min_gain, kConfigRange, "",
               "estimate all the same when a joint refinement from the pose-only fit moves the offset by twice the "
               "resolution and lowers the loss by this fraction (the stamps are far off; 1 = never)");
+  timing.real("time_offset_keep_start_sigmas", &TimeOffsetConfig::keep_start_sigmas, kConfigRange, "",
+              "estimate: an offset found within this many resolutions (1 sigma) of time_offset_s is not told from it: "
+              "the pose fitted at time_offset_s is kept and the offset stays there (a synchronised rig does not pay "
+              "for the seventh parameter); 0 = always the joint fit");
   top.text("point_time_field", &CoreParameters::point_time_field,
            TextRule::required("must be auto, none or the name of a PointCloud2 field"),
            "the clusters' per-point capture time: auto (the first of time, t, timestamp, offset_time the "
