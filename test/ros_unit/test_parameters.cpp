@@ -188,8 +188,8 @@ TEST(Parameters, QualityThresholdsAreValidatedAcrossKeys) {
 
 TEST(Parameters, DescribeListsEveryCoreKeyOnce) {
   const auto described = describeCoreParameters(CoreParameters{});
-  EXPECT_EQ(described.size(), 97u);  // 35 of the method and gating, 17 quality (issue 8), 16 drift (9),
-                                     // 17 timing (21: 15 of the estimate and verdict, 2 of the watch),
+  EXPECT_EQ(described.size(), 98u);  // 35 of the method and gating, 17 quality (issue 8), 16 drift (9),
+                                     // 18 timing (21: 16 of the estimate and verdict, 2 of the watch),
                                      // 7 association (23), 2 of the sub-pixel loss (24: refine_outline_px,
                                      // refine_ring_end_weight), refine_evolution_generations,
                                      // association_final_round (24), refine_evolution_min_share
