@@ -53,6 +53,8 @@ while [ $# -gt 0 ]; do
   esac
 done
 [ ${#seeds[@]} -gt 0 ] || seeds=(1 2 3 4 5)
+length=()
+[ -n "$frames" ] && length=(--frames "$frames")
 if [ ${#bins[@]} -eq 0 ]; then
   prepare_workspace
   bins=("current=$bin")
@@ -100,13 +102,11 @@ calibrate() {  # label dir bag truth rig input noise seed
 
 for rig in $rigs; do
   for noise_name in $noises; do
-    noise="$noise_name"
-    [ -n "$frames" ] && noise="${noise_name}_${frames}f"
+    noise="$noise_name${frames:+_${frames}f}"
     for seed in "${seeds[@]}"; do
       for input in $inputs; do
         kind=ideal
-        gen_args=()
-        [ -n "$frames" ] && gen_args=(--frames "$frames")
+        gen_args=("${length[@]}")
         if [ "$input" = detect ]; then kind=raw; gen_args+=(--raw); fi
         bag="$out/bags/$kind.$rig.$noise.$seed.bag"
         truth="$out/bags/$kind.$rig.$noise.$seed.truth.yaml"

@@ -41,6 +41,8 @@ while [ $# -gt 0 ]; do
   esac
 done
 [ ${#seeds[@]} -gt 0 ] || seeds=(1 2 3 4 5)
+length=()
+[ -n "$frames" ] && length=(--frames "$frames")
 out="${TLC_TIMING_OUT:-$repo/out/timing}"
 mkdir -p "$out"
 
@@ -71,9 +73,7 @@ modes() {  # case -> the runs on its bag
 for case_ in $cases; do
   for noise in $noises; do
     for seed in "${seeds[@]}"; do
-      length=()
-      name="$case_.$noise.seed$seed"
-      if [ -n "$frames" ]; then length=(--frames "$frames"); name="$case_.${noise}_${frames}f.seed$seed"; fi
+      name="$case_.$noise${frames:+_${frames}f}.seed$seed"
       todo=()
       for mode in $(modes "$case_") fixed; do
         [[ " $wanted " == *" $mode "* ]] || continue

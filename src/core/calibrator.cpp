@@ -191,14 +191,14 @@ void searchOffset(const LossEvaluator& bilinear, const CalibrationConfig& config
 // started cannot be told from the start (a synchronised rig, a millisecond or two off by chance):
 // the pose fitted at the start, its pairs and the start offset are kept, and the note says so.
 // The joint fit would otherwise spend the seventh parameter on noise, which the translation along
-// the travel pays for (speed times the offset's error). Returns whether the start was kept.
-bool keepStartWhenNotTold(const CalibrationConfig& config, double start_s, const Extrinsic& pose_only,
+// the travel pays for (speed times the offset's error).
+void keepStartWhenNotTold(const CalibrationConfig& config, double start_s, const Extrinsic& pose_only,
                           const std::vector<std::size_t>& pose_only_used, std::vector<std::size_t>& used,
                           CalibrationResult& result) {
   const double sigmas = config.time_offset.keep_start_sigmas;
   const double moved_ms = 1000.0 * std::abs(result.time_offset_s - start_s);
   if (!(sigmas > 0.0) || !std::isfinite(result.time_resolution_ms) || !(moved_ms < sigmas * result.time_resolution_ms)) {
-    return false;
+    return;
   }
   char note[320];
   std::snprintf(note, sizeof(note),
@@ -209,7 +209,6 @@ bool keepStartWhenNotTold(const CalibrationConfig& config, double start_s, const
   result.extrinsic = pose_only;
   result.time_offset_s = start_s;
   used = pose_only_used;
-  return true;
 }
 
 // Beyond the paper: the local refinement, alternating with the re-selection of the inliers.
