@@ -44,12 +44,16 @@ endforeach()
 set_source_files_properties(${PROJECT_SOURCE_DIR}/src/core/loss_kernels.cpp PROPERTIES
   SKIP_PRECOMPILE_HEADERS ON)
 # The ROS side: the adapters' library and the libraries over it (node/, tools/, the nodelets, the
-# generator), one precompiled header each: a shared library defines <target>_EXPORTS, so one
-# cannot reuse another's (GCC: "not used because thermal_lidar_calibration_ros_EXPORTS not
-# defined").
+# generator) share one precompiled header (they compile with the same flags). A shared library
+# defines <target>_EXPORTS, which would make each one's differ (GCC: "not used because
+# thermal_lidar_calibration_ros_EXPORTS not defined"); nothing here reads those macros (symbol
+# visibility is the default), so they are not defined.
+set(ros_libs "")
 foreach(lib ros node tools nodelets synthetic_bag)
-  tlc_precompile(HEADERS ${TLC_PCH_ROS_FREE} ${TLC_PCH_ROS} TARGETS thermal_lidar_calibration_${lib})
+  set_target_properties(thermal_lidar_calibration_${lib} PROPERTIES DEFINE_SYMBOL "")
+  list(APPEND ros_libs thermal_lidar_calibration_${lib})
 endforeach()
+tlc_precompile(HEADERS ${TLC_PCH_ROS_FREE} ${TLC_PCH_ROS} TARGETS ${ros_libs})
 
 # The tests (gtest): those that link the ROS adapters (directly or through node/, tools/), those
 # that link the detectors (directly or through app/: PCL's targets add -fPIC, which a precompiled
