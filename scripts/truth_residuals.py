@@ -2,7 +2,8 @@
 """Where a synthetic drive's LiDAR person points fall against its person masks at the TRUE
 extrinsic, by the people's depth: the share of points outside their masks and their mean
 distance beyond the outline (`refine_outline_px` 0.5: half a pixel past the covered pixel
-centres), split by direction (above the mask, below it, beside it). A clean drive's truth should
+centres), split by where the point lies against its mask (above it, below it, left of it, right
+of it). A clean drive's truth should
 fit its own masks the same way near and far; where it does not, the mask loss prefers a pose that
 moves near and far people apart vertically (docs/validation/accuracy.md, "The truth's own
 residuals").
@@ -123,12 +124,12 @@ def main():
                 if abs(dv) >= abs(du):
                     a["above" if dv > 0 else "below"] += beyond  # dv > 0: the mask lies below the point
                 else:
-                    a["beside"] += beyond
+                    a["left" if du > 0 else "right"] += beyond  # du > 0: the mask lies right of the point
     print("%d frames of %s; loss per point in px beyond the outline (%.1f px past the pixel centres)"
           % (len(stamps), bag_path, OUTLINE_PX))
-    print("| %s | points | outside %% | loss/point | above | below | beside |"
+    print("| %s | points | outside %% | loss/point | above | below | left | right |"
           % ("height above the ground m" if by_height else "person's depth m"))
-    print("|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|")
     for b in sorted(acc):
         a = acc[b]
         n = a["points"]
@@ -136,8 +137,9 @@ def main():
             continue
         rows = ("%.1f-%.1f" % (b * HEIGHT_BIN_M, (b + 1) * HEIGHT_BIN_M)) if by_height else \
             ("%d-%d" % (DEPTH_BINS_M[b], DEPTH_BINS_M[b + 1]))
-        print("| %s | %d | %.1f | %.4f | %.4f | %.4f | %.4f |" % (
-            rows, n, 100.0 * a["outside"] / n, a["loss"] / n, a["above"] / n, a["below"] / n, a["beside"] / n))
+        print("| %s | %d | %.1f | %.4f | %.4f | %.4f | %.4f | %.4f |" % (
+            rows, n, 100.0 * a["outside"] / n, a["loss"] / n, a["above"] / n, a["below"] / n, a["left"] / n,
+            a["right"] / n))
 
 
 if __name__ == "__main__":
