@@ -3,14 +3,14 @@
 extrinsic, by the people's depth: the share of points outside their masks and their mean
 distance beyond the outline (`refine_outline_px` 0.5: half a pixel past the covered pixel
 centres), split by where the point lies against its mask (above it, below it, left of it, right
-of it). A clean drive's truth should
-fit its own masks the same way near and far; where it does not, the mask loss prefers a pose that
-moves near and far people apart vertically (docs/validation/accuracy.md, "The truth's own
-residuals").
+of it). A clean drive's truth should fit its own masks the same way near and far, up and down,
+left and right; where it does not, the mask loss prefers another pose (docs/validation/accuracy.md,
+"The truth's own residuals").
 
 Usage: truth_residuals.py [--by-height] BAG TRUTH.yaml [MAX_FRAMES]
   --by-height  rows by each point's height above the ground (the truth's lidar_height_m over a
-               flat ground), 0.2 m apart, instead of by each person's depth
+               flat ground), 0.2 m apart up to 1.8 m and one row above, instead of by each
+               person's depth
   BAG    a make_synthetic_bag bag with masks and clusters (/thermal/human_mask,
          /lidar/human_clusters); the truth's plumb_bob lens model is applied
   TRUTH  its --truth file
@@ -26,6 +26,7 @@ import yaml
 OUTLINE_PX = 0.5
 DEPTH_BINS_M = [0, 8, 12, 16, 20, 25, 35, 60]
 HEIGHT_BIN_M = 0.2
+HEIGHT_ROWS = 10  # the last row holds every point from 1.8 m up
 SEARCH_PX = 4  # a point further than this from every mask pixel counts as this far
 
 
@@ -70,7 +71,10 @@ def main():
     if len(args) not in (2, 3):
         sys.exit(__doc__)
     bag_path, truth_path = args[0], args[1]
-    truth = yaml.safe_load(open(truth_path))
+    with open(truth_path) as f:
+        truth = yaml.safe_load(f)
+    if not isinstance(truth, dict) or "rotation_matrix" not in truth:
+        sys.exit("truth_residuals: %s is not a make_synthetic_bag truth file (no rotation_matrix)" % truth_path)
     if truth.get("distortion_model", "plumb_bob") != "plumb_bob":
         sys.exit("truth_residuals: only the plumb_bob lens model is read")
     k1, k2, p1, p2, k3 = (list(truth.get("distortion_coefficients", [])) + [0.0] * 5)[:5]
@@ -113,7 +117,7 @@ def main():
             depth = sorted(p[2] for p in points)[len(points) // 2]
             b = max(0, min(len(DEPTH_BINS_M) - 2, sum(1 for edge in DEPTH_BINS_M if edge <= depth) - 1))
             for u, v, _, above_ground in points:
-                a = acc[max(0, min(9, int(above_ground / HEIGHT_BIN_M)))] if by_height else acc[b]
+                a = acc[max(0, min(HEIGHT_ROWS - 1, int(above_ground / HEIGHT_BIN_M)))] if by_height else acc[b]
                 a["points"] += 1
                 d, dv, du = nearest_mask_pixel(mask, width, height, u, v)
                 beyond = max(0.0, d - OUTLINE_PX)
@@ -135,12 +139,21 @@ def main():
         n = a["points"]
         if n == 0:
             continue
-        rows = ("%.1f-%.1f" % (b * HEIGHT_BIN_M, (b + 1) * HEIGHT_BIN_M)) if by_height else \
-            ("%d-%d" % (DEPTH_BINS_M[b], DEPTH_BINS_M[b + 1]))
+        if not by_height:
+            rows = "%d-%d" % (DEPTH_BINS_M[b], DEPTH_BINS_M[b + 1])
+        elif b == HEIGHT_ROWS - 1:
+            rows = "%.1f+" % (b * HEIGHT_BIN_M)
+        else:
+            rows = "%.1f-%.1f" % (b * HEIGHT_BIN_M, (b + 1) * HEIGHT_BIN_M)
         print("| %s | %d | %.1f | %.4f | %.4f | %.4f | %.4f | %.4f |" % (
             rows, n, 100.0 * a["outside"] / n, a["loss"] / n, a["above"] / n, a["below"] / n, a["left"] / n,
             a["right"] / n))
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except (OSError, yaml.YAMLError, rosbag.ROSBagException, KeyError, ValueError) as e:
+        first_line = (str(e).splitlines() or [""])[0]
+        sys.exit("truth_residuals: %s: %s (give a make_synthetic_bag bag and its --truth file)"
+                 % (type(e).__name__, first_line))
