@@ -177,6 +177,7 @@ void finalRound(const CameraModel& camera, const std::vector<CalibrationPair>& c
   carryOver(first, refit);
   refit.ring_alias_tried = out.result.ring_alias_tried;
   refit.ring_alias_turn = out.result.ring_alias_turn;
+  refit.ring_spacing_rad = out.result.ring_spacing_rad;
   out.result = std::move(refit);
   out.pairs = std::move(enlarged);
   out.association_pairs = associated.size();

@@ -208,10 +208,11 @@ TEST(AssociationRefit, TheResultCountsTheRingAliasCheckOfEveryFit) {
 // Issue 24: the frames the skip rule passed over (outside_skip_rule) wait for the final round. The
 // rounds never pair them; the final round pairs them at the rounds' extrinsic, marks every pair
 // the rounds did not make, and its refinement stays at the truth. Without it they are left alone.
-TEST(AssociationRefit, TheFinalRoundPairsTheSkippedFramesAfterTheRoundsAndMarksThem) {
-  const auto counts = countPairs(30, 8);
-  const auto spaced = candidates(40, 21);  // at 100 i + 50
-  std::vector<CalibrationPair> skipped = candidates(30, 33);
+namespace {
+// The candidate frames of the final round's tests: `spaced` (at 100 i + 50) and beside each of
+// them a frame the skip rule passed over (100 i + 51), in stamp order.
+std::vector<CalibrationPair> withSkippedBeside(const std::vector<CalibrationPair>& spaced,
+                                               std::vector<CalibrationPair> skipped) {
   for (std::size_t i = 0; i < skipped.size(); ++i) {
     skipped[i].candidate_index = 100 * i + 51;  // beside the spaced ones, within skip_frames
     skipped[i].outside_skip_rule = true;
@@ -221,6 +222,13 @@ TEST(AssociationRefit, TheFinalRoundPairsTheSkippedFramesAfterTheRoundsAndMarksT
   std::sort(frames.begin(), frames.end(), [](const CalibrationPair& a, const CalibrationPair& b) {
     return a.candidate_index < b.candidate_index;
   });
+  return frames;
+}
+}  // namespace
+
+TEST(AssociationRefit, TheFinalRoundPairsTheSkippedFramesAfterTheRoundsAndMarksThem) {
+  const auto counts = countPairs(30, 8);
+  const std::vector<CalibrationPair> frames = withSkippedBeside(candidates(40, 21), candidates(30, 33));
   const auto beside = [](const CalibrationPair& p) { return p.candidate_index % 100 == 51; };
 
   PairingConfig without;
@@ -250,4 +258,20 @@ TEST(AssociationRefit, TheFinalRoundPairsTheSkippedFramesAfterTheRoundsAndMarksT
   EXPECT_LT(rotationErrorRad(r.result.extrinsic, fieldsafeTruth()), 0.2 * kDeg);
   EXPECT_LT(translationErrorM(r.result.extrinsic, fieldsafeTruth()), 0.03);
   EXPECT_GT(r.result.evaluations, rounds_only.result.evaluations);  // the final refinement's work counts
+}
+
+// The final round refines without the ring alias check (the rounds ran it); the result still
+// reports the rounds' check: how many starts, which turn, and the ring spacing they turned by
+// (it used to read 0 deg beside the starts refined).
+TEST(AssociationRefit, TheFinalRoundKeepsTheRoundsRingAliasReport) {
+  auto counts = countPairs(30, 8);
+  auto spaced = candidates(40, 21);
+  auto skipped = candidates(30, 33);
+  for (auto* pairs : {&counts, &spaced, &skipped}) test_support::snapToRings(*pairs, 4.0 / 3.0);
+  const AssociatedCalibration r = calibrateWithAssociation(
+      fieldsafeCamera(), counts, withSkippedBeside(spaced, skipped), quickConfig(), PairingConfig{}, PairingLimits{});
+  ASSERT_TRUE(r.final_round);
+  EXPECT_NEAR(r.result.ring_spacing_rad / kDeg, 4.0 / 3.0, 0.01);
+  const int refits = r.converged ? r.rounds - 1 : r.rounds;
+  EXPECT_EQ(r.result.ring_alias_tried, 4 * (1 + refits));
 }
