@@ -255,18 +255,16 @@ std::vector<std::size_t> refineRounds(const LossEvaluator& nearest, const Calibr
 
 // Beyond the paper: the refined pose may lie a ring spacing or two off the truth, a basin the
 // refinement cannot leave (ring_alias.hpp). Refines from the turned poses on the same pairs, at
-// the same offset, and keeps the best when its loss is clearly below the refined pose's.
-// Returns true when the pose moved.
+// the same offset, and keeps the best when its loss is clearly below the refined pose's
+// (ringAliasStartWins). Returns true when the pose moved.
 bool leaveRingAlias(const LossEvaluator& nearest, const std::vector<CalibrationPair>& pairs,
                     const CalibrationConfig& config, const std::vector<std::size_t>& used, Reporter& report,
                     CalibrationResult& result) {
-  constexpr double kClearlyLower = 0.9;
-  constexpr double kMinGainPx = 0.005;  // and lower by at least this: near-zero losses differ by noise
   if (config.refine.ring_alias_turns <= 0) return false;
   result.ring_spacing_rad = ringSpacing(pairs, used).spacing_rad;
   const LossEvaluator here = at(nearest.withPixelRule(PixelRule::kBilinear), result.time_offset_s);
   const double refined_loss = here.loss(result.extrinsic, used);
-  double best = kClearlyLower * refined_loss - kMinGainPx;
+  double best = refined_loss;
   Extrinsic chosen = result.extrinsic;
   for (const RingAliasStart& s :
        ringAliasStarts(result.extrinsic, result.ring_spacing_rad, config.refine.ring_alias_turns)) {
@@ -282,7 +280,7 @@ bool leaveRingAlias(const LossEvaluator& nearest, const std::vector<CalibrationP
     result.evaluations += refined.evaluations;
     result.stopped = refined.stopped;
     ++result.ring_alias_tried;
-    if (!result.stopped && refined.loss < best) {
+    if (!result.stopped && refined.loss < best && ringAliasStartWins(refined.loss, refined_loss)) {
       best = refined.loss;
       chosen = refined.best;
       result.ring_alias_turn = s.turn;

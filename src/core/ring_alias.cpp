@@ -68,6 +68,12 @@ Extrinsic turnedAboutCameraX(const Extrinsic& e, double angle_rad) {
   return Extrinsic::fromRotationMatrix(D * e.rotationMatrix(), D * e.translation);
 }
 
+bool ringAliasStartWins(double start_loss, double refined_loss) {
+  constexpr double kLowerRatio = 0.98;
+  constexpr double kMinGainPx = 0.001;  // near-zero losses differ by noise
+  return start_loss < kLowerRatio * refined_loss - kMinGainPx;
+}
+
 std::vector<RingAliasStart> ringAliasStarts(const Extrinsic& e, double spacing_rad, int turns) {
   std::vector<RingAliasStart> starts;
   if (!(spacing_rad > 0.0)) return starts;

@@ -67,9 +67,11 @@ std::string formatCalibrationSummary(const SummaryInput& in) {
                                     r.loss_bilinear, r.evolution_loss)
     << "\n";
   if (r.ring_alias_turn != 0) {
-    // The refinement had ended in a basin a ring spacing or more off (ring_alias.hpp): say so.
+    // A turned start refined to a clearly lower loss than the refinement's own end (ring_alias.hpp):
+    // say so. Where it ends says how far the refinement had been (often a ring off, sometimes near).
     s << "  ring alias       "
-      << fmt("the refined pose lay %.0f ring spacing(s) of %.2f deg off; refined again from there",
+      << fmt("refined again from the pose turned %.0f ring spacing(s) of %.2f deg about x: "
+             "a clearly lower loss, kept",
              std::abs(static_cast<double>(r.ring_alias_turn)), r.ring_spacing_rad * kDeg, 0)
       << "\n";
   }

@@ -146,6 +146,19 @@ TEST(RingAlias, ThePaperModeDoesNotRunIt) {
   EXPECT_EQ(paper.ring_spacing_rad, 0.0);
 }
 
+// A start wins when it refined into another basin, not when it refined back into the refined
+// pose's own (within 0.02 % of it); figures of the raw drive that asked for the 2 % rule.
+TEST(RingAlias, AStartWinsByTwoPercentNotByTheSearchsOwnScatter) {
+  const double refined = 0.73093;                 // the refined pose's sub-pixel loss, px
+  EXPECT_TRUE(ringAliasStartWins(0.68964, refined));   // the truth's basin, 5.6 % lower
+  EXPECT_FALSE(ringAliasStartWins(0.73092, refined));  // the same basin, refined again
+  EXPECT_FALSE(ringAliasStartWins(0.72000, refined));  // 1.5 % lower: not clearly another basin
+  EXPECT_FALSE(ringAliasStartWins(0.74000, refined));
+  // Near zero the 0.001 px decides: losses of a few thousandths differ by noise alone.
+  EXPECT_FALSE(ringAliasStartWins(0.0015, 0.0024));
+  EXPECT_TRUE(ringAliasStartWins(0.0010, 0.0024));
+}
+
 TEST(RefineConfig, RejectsRingAliasTurnsOutOfRangeNamingTheKey) {
   RefineConfig config;
   config.ring_alias_turns = -1;

@@ -54,9 +54,10 @@ struct CalibrationResult {
   VerticalCentringOutcome vertical_centring;
   // With refine = local and refine.ring_alias_turns > 0 (ring_alias.hpp): the rings' elevation
   // spacing found among the points used (0: none found, nothing tried), the turned starts
-  // refined, and the turn kept, in ring spacings (+ turns the camera down about its x axis; 0: the
-  // refined pose stayed). After association rounds (association_refit.hpp): every fit's starts,
-  // and the last turn any of them kept.
+  // refined, and the turn of the start whose refined fit was kept, in ring spacings (+ turns the
+  // camera down about its x axis; 0: the refined pose stayed; the kept fit may end near the
+  // refined pose, lower in the same basin). After association rounds (association_refit.hpp):
+  // every fit's starts, and the last turn any of them kept.
   double ring_spacing_rad = 0.0;
   int ring_alias_tried = 0;
   int ring_alias_turn = 0;
