@@ -205,9 +205,6 @@ TEST(AssociationRefit, TheResultCountsTheRingAliasCheckOfEveryFit) {
   EXPECT_LT(rotationErrorRad(r.result.extrinsic, fieldsafeTruth()), 0.3 * kDeg);  // sane (quick config)
 }
 
-// Issue 24: the frames the skip rule passed over (outside_skip_rule) wait for the final round. The
-// rounds never pair them; the final round pairs them at the rounds' extrinsic, marks every pair
-// the rounds did not make, and its refinement stays at the truth. Without it they are left alone.
 namespace {
 // The candidate frames of the final round's tests: `spaced` (at 100 i + 50) and beside each of
 // them a frame the skip rule passed over (100 i + 51), in stamp order.
@@ -226,6 +223,9 @@ std::vector<CalibrationPair> withSkippedBeside(const std::vector<CalibrationPair
 }
 }  // namespace
 
+// Issue 24: the frames the skip rule passed over (outside_skip_rule) wait for the final round. The
+// rounds never pair them; the final round pairs them at the rounds' extrinsic, marks every pair
+// the rounds did not make, and its refinement stays at the truth. Without it they are left alone.
 TEST(AssociationRefit, TheFinalRoundPairsTheSkippedFramesAfterTheRoundsAndMarksThem) {
   const auto counts = countPairs(30, 8);
   const std::vector<CalibrationPair> frames = withSkippedBeside(candidates(40, 21), candidates(30, 33));
