@@ -9,7 +9,7 @@ packages=(
   libgeometry-msgs-dev libstd-srvs-dev libtf2-ros-dev libtf2-msgs-dev libcv-bridge-dev
   libimage-transport-dev libmessage-filters-dev libopencv-dev libeigen3-dev libyaml-cpp-dev
   python3-rostest librostest-dev ros-message-generation ros-message-runtime rosbash
-  googletest libgtest-dev libbenchmark-dev python3-rosbag python3-yaml python3-std-srvs
+  googletest libgtest-dev libbenchmark-dev python3-rosbag python3-yaml python3-std-srvs python3-sensor-msgs
   libpcl-dev libpcl-conversions-dev libnodeletlib-dev libnodeletlib-tools
   libdiagnostic-updater-dev libdiagnostic-msgs-dev libvisualization-msgs-dev
   rviz tf2-tools

@@ -14,14 +14,19 @@ Usage: truth_residuals.py [--by-height] BAG TRUTH.yaml [MAX_FRAMES]
   BAG    a make_synthetic_bag bag with masks and clusters (/thermal/human_mask,
          /lidar/human_clusters); the truth's plumb_bob lens model is applied
   TRUTH  its --truth file
-Reads the bag with rosbag (python3-rosbag); run with Debian's /usr/bin/python3."""
+Reads the bag with rosbag and sensor_msgs.point_cloud2 (python3-rosbag, python3-sensor-msgs); run
+with Debian's /usr/bin/python3."""
 import collections
 import math
-import struct
 import sys
 
-import rosbag
-import yaml
+try:
+    import rosbag
+    import yaml
+    from sensor_msgs import point_cloud2
+except ImportError as missing:
+    sys.exit("truth_residuals: %s: run it with Debian's /usr/bin/python3 after bash scripts/install_deps.sh"
+             % missing)
 
 OUTLINE_PX = 0.5
 DEPTH_BINS_M = [0, 8, 12, 16, 20, 25, 35, 60]
@@ -31,18 +36,11 @@ SEARCH_PX = 4  # a point further than this from every mask pixel counts as this 
 
 
 def cloud_points(msg):
-    """(x, y, z, label) of every point of a PointCloud2 with float32 x, y, z and a label field."""
-    kinds = {2: "B", 4: "H", 5: "i", 6: "I", 7: "f"}
-    fields = {f.name: (f.offset, kinds[f.datatype]) for f in msg.fields if f.datatype in kinds}
-    if not all(k in fields for k in ("x", "y", "z", "label")):
+    """(x, y, z, label) of every point of a PointCloud2 with x, y, z and a label field."""
+    names = {f.name for f in msg.fields}
+    if not {"x", "y", "z", "label"} <= names:
         sys.exit("truth_residuals: the clusters have no x, y, z and label fields")
-    data, step = bytes(msg.data), msg.point_step
-    out = []
-    for i in range(msg.width * msg.height):
-        base = i * step
-        out.append(tuple(struct.unpack_from("<" + fields[k][1], data, base + fields[k][0])[0]
-                         for k in ("x", "y", "z", "label")))
-    return out
+    return list(point_cloud2.read_points(msg, field_names=("x", "y", "z", "label")))
 
 
 def nearest_mask_pixel(mask, width, height, u, v):
