@@ -3,6 +3,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -19,18 +21,34 @@ void requireMaskType(const cv::Mat& mask, const char* who) {
 }
 
 // Number of distinct non-zero values; `single_value` is set to the value when there is one.
+// Every frame's mask passes here (the count rule, the association), and most of a mask is
+// background: eight bytes of zeros are skipped at once (5 % of a default calibrate_bag run went
+// to this loop pixel by pixel).
 template <typename T>
 int distinctNonZero(const cv::Mat& mask, int& single_value) {
-  std::vector<bool> seen(static_cast<std::size_t>(1) << (8 * sizeof(T)), false);
+  constexpr int kPerWord = static_cast<int>(sizeof(std::uint64_t) / sizeof(T));
+  std::vector<std::uint8_t> seen(static_cast<std::size_t>(1) << (8 * sizeof(T)), 0);
   int distinct = 0;
   for (int r = 0; r < mask.rows; ++r) {
     const T* row = mask.ptr<T>(r);
-    for (int c = 0; c < mask.cols; ++c) {
-      const T v = row[c];
-      if (v != 0 && !seen[v]) {
-        seen[v] = true;
-        ++distinct;
-        single_value = v;
+    int c = 0;
+    while (c < mask.cols) {
+      if (c + kPerWord <= mask.cols) {
+        std::uint64_t word;
+        std::memcpy(&word, row + c, sizeof(word));
+        if (word == 0) {
+          c += kPerWord;
+          continue;
+        }
+      }
+      const int end = std::min(mask.cols, c + kPerWord);
+      for (; c < end; ++c) {
+        const T v = row[c];
+        if (v != 0 && !seen[v]) {
+          seen[v] = 1;
+          ++distinct;
+          single_value = v;
+        }
       }
     }
   }

@@ -6,6 +6,7 @@
 
 #include <opencv2/core.hpp>
 
+#include <cstdint>
 #include <stdexcept>
 
 namespace tlc = thermal_lidar_calibration;
@@ -64,6 +65,39 @@ TEST(CountMaskPeople, SixteenBitMasks) {
   fill(binary, 1, 1, 5, 5, 65535);
   fill(binary, 20, 20, 5, 5, 65535);
   EXPECT_EQ(tlc::countMaskPeople(binary), 2);
+}
+
+// The count skips background eight bytes at a time: a lone id pixel is counted at every column,
+// including the ends of rows whose width is not a multiple of the word, and in a view into a
+// larger mask (rows not contiguous).
+TEST(CountMaskPeople, ALonePixelCountsWhereverItLies) {
+  for (const int type : {CV_8UC1, CV_16UC1}) {
+    for (const int width : {1, 3, 8, 13, 37}) {
+      for (int c = 0; c < width; ++c) {
+        cv::Mat ids = cv::Mat::zeros(3, width, type);
+        if (type == CV_8UC1) {
+          ids.at<std::uint8_t>(1, c) = 9;
+        } else {
+          ids.at<std::uint16_t>(1, c) = 700;
+        }
+        EXPECT_EQ(tlc::countMaskPeople(ids), 1) << "width " << width << " column " << c;
+        if (c + 1 < width) {
+          if (type == CV_8UC1) {
+            ids.at<std::uint8_t>(2, width - 1) = 4;
+          } else {
+            ids.at<std::uint16_t>(2, width - 1) = 4;
+          }
+          EXPECT_EQ(tlc::countMaskPeople(ids), 2) << "width " << width << " column " << c;
+        }
+      }
+    }
+    cv::Mat big = cv::Mat::zeros(10, 50, type);
+    cv::Mat view = big(cv::Rect(3, 2, 21, 5));
+    fill(view, 20, 0, 1, 1, 5);
+    fill(view, 0, 4, 1, 1, 6);
+    fill(big, 30, 0, 5, 5, 7);  // outside the view
+    EXPECT_EQ(tlc::countMaskPeople(view), 2);
+  }
 }
 
 TEST(CountMaskPeople, BadTypeThrows) {
