@@ -140,6 +140,15 @@ void carryOver(const CalibrationResult& first, CalibrationResult& refit) {
   refit.history = std::move(history);
 }
 
+// The ring alias check of every fit so far counts in `refit`'s report (a turn kept in an earlier
+// fit moved the start of this one): the starts add up, the turn and the spacing are the latest
+// fit's that has one (the final round refines without the check and keeps the rounds').
+void addRingAliasReport(const CalibrationResult& before, CalibrationResult& refit) {
+  refit.ring_alias_tried += before.ring_alias_tried;
+  if (refit.ring_alias_turn == 0) refit.ring_alias_turn = before.ring_alias_turn;
+  if (!(refit.ring_spacing_rad > 0.0)) refit.ring_spacing_rad = before.ring_spacing_rad;
+}
+
 // Issue 24: one more association at the converged extrinsic with the skip rule off, over every
 // candidate and skipped frame, and a refinement on that set from where the rounds ended. Between
 // two kept frames the people move a few centimetres: their rings meet them at other heights,
@@ -175,9 +184,7 @@ void finalRound(const CameraModel& camera, const std::vector<CalibrationPair>& c
   out.final_round_evaluations = refit.evaluations;
   out.final_round_points = refit.points_projected;
   carryOver(first, refit);
-  refit.ring_alias_tried = out.result.ring_alias_tried;
-  refit.ring_alias_turn = out.result.ring_alias_turn;
-  refit.ring_spacing_rad = out.result.ring_spacing_rad;
+  addRingAliasReport(out.result, refit);
   out.result = std::move(refit);
   out.pairs = std::move(enlarged);
   out.association_pairs = associated.size();
@@ -298,10 +305,7 @@ AssociatedCalibration calibrateWithAssociation(const CameraModel& camera, std::v
     evaluations += refit.evaluations;
     points += refit.points_projected;
     carryOver(first, refit);
-    // The ring alias check of every fit so far counts (a turn kept in an earlier round moved the
-    // start of this one).
-    refit.ring_alias_tried += out.result.ring_alias_tried;
-    if (refit.ring_alias_turn == 0) refit.ring_alias_turn = out.result.ring_alias_turn;
+    addRingAliasReport(out.result, refit);
     out.result = std::move(refit);
     out.pairs = std::move(enlarged);
     out.association_pairs = associated.size();
