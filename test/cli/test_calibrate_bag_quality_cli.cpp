@@ -32,21 +32,20 @@ class CalibrateBagQualityCli : public ::testing::Test {
       ASSERT_EQ(gen.exit_code, 0) << gen.err;
     }
   }
-  static RunResult calibrate(const std::string& name, const std::string& extra = "") {
+  // Calibrates `name`.bag into `output`.yaml (`name`.yaml when empty).
+  static RunResult calibrate(const std::string& name, const std::string& extra = "",
+                             const std::string& output = "") {
     return tlc_cli_test::runTool(CALIBRATE_BAG_EXE,
-                                 "--bag '" + dir_ + "/" + name + ".bag' --output '" + dir_ + "/" + name +
-                                     ".yaml' " + extra,
+                                 "--bag '" + dir_ + "/" + name + ".bag' --output '" + dir_ + "/" +
+                                     (output.empty() ? name : output) + ".yaml' " + extra,
                                  dir_);
   }
   // The default run on the full drive with --reference (the truth) and --report, into
   // full_run.yaml: made once, read by the tests of each (a default run is this suite's longest
   // step), and written where the other tests' runs on the same bag do not write.
   static const RunResult& fullRun() {
-    static const RunResult r = tlc_cli_test::runTool(
-        CALIBRATE_BAG_EXE,
-        "--bag '" + dir_ + "/full.bag' --output '" + dir_ + "/full_run.yaml' --reference '" + dir_ +
-            "/full.truth.yaml' --report '" + dir_ + "/report'",
-        dir_);
+    static const RunResult r = calibrate(
+        "full", "--reference '" + dir_ + "/full.truth.yaml' --report '" + dir_ + "/report'", "full_run");
     return r;
   }
   static std::string dir_;

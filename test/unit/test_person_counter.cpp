@@ -6,7 +6,6 @@
 
 #include <opencv2/core.hpp>
 
-#include <cstdint>
 #include <stdexcept>
 
 namespace tlc = thermal_lidar_calibration;
@@ -75,18 +74,10 @@ TEST(CountMaskPeople, ALonePixelCountsWhereverItLies) {
     for (const int width : {1, 3, 8, 13, 37}) {
       for (int c = 0; c < width; ++c) {
         cv::Mat ids = cv::Mat::zeros(3, width, type);
-        if (type == CV_8UC1) {
-          ids.at<std::uint8_t>(1, c) = 9;
-        } else {
-          ids.at<std::uint16_t>(1, c) = 700;
-        }
+        fill(ids, c, 1, 1, 1, type == CV_8UC1 ? 9 : 700);
         EXPECT_EQ(tlc::countMaskPeople(ids), 1) << "width " << width << " column " << c;
         if (c + 1 < width) {
-          if (type == CV_8UC1) {
-            ids.at<std::uint8_t>(2, width - 1) = 4;
-          } else {
-            ids.at<std::uint16_t>(2, width - 1) = 4;
-          }
+          fill(ids, width - 1, 2, 1, 1, 4);
           EXPECT_EQ(tlc::countMaskPeople(ids), 2) << "width " << width << " column " << c;
         }
       }
