@@ -45,7 +45,7 @@ class DistanceMaps {
   // The count rule's pairs: each its own map (their copies in every round share it).
   static void attachOwn(std::vector<CalibrationPair>& pairs) {
     for (CalibrationPair& p : pairs) {
-      if (!p.distance_map) p.distance_map = build(p.mask);
+      if (!p.distance_map) p.distance_map = sharedDistanceMap(p.mask);
     }
   }
   // Pairs made by association from the candidates.
@@ -53,23 +53,16 @@ class DistanceMaps {
     for (CalibrationPair& p : associated) {
       if (p.distance_map) continue;
       if (!by_frame_) {
-        p.distance_map = build(p.mask);
+        p.distance_map = sharedDistanceMap(p.mask);
         continue;
       }
       std::shared_ptr<const DistanceMap>& map = maps_[p.candidate_index];
-      if (!map) map = build(p.mask);
+      if (!map) map = sharedDistanceMap(p.mask);
       p.distance_map = map;
     }
   }
 
  private:
-  static std::shared_ptr<const DistanceMap> build(const cv::Mat& mask) {
-    try {
-      return std::make_shared<const DistanceMap>(mask);
-    } catch (const std::invalid_argument&) {
-      return nullptr;
-    }
-  }
   bool by_frame_ = false;
   std::map<std::uint64_t, std::shared_ptr<const DistanceMap>> maps_;
 };

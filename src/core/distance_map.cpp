@@ -94,4 +94,12 @@ float DistanceMap::bilinear(float u, float v) const {
   return minps(std::fabs(u - cu) + std::fabs(v - cv), kOffBoxCap) + (top + ay * (bottom - top));
 }
 
+std::shared_ptr<const DistanceMap> sharedDistanceMap(const cv::Mat& mask) {
+  try {
+    return std::make_shared<const DistanceMap>(mask);
+  } catch (const std::invalid_argument&) {
+    return nullptr;
+  }
+}
+
 }  // namespace thermal_lidar_calibration

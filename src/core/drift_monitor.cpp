@@ -1,6 +1,7 @@
 #include "thermal_lidar_calibration/core/drift_monitor.hpp"
 
 #include "thermal_lidar_calibration/core/change_point.hpp"
+#include "thermal_lidar_calibration/core/distance_map.hpp"
 #include "thermal_lidar_calibration/core/drift_timing.hpp"
 #include "thermal_lidar_calibration/core/timing_resolution.hpp"
 #include "thermal_lidar_calibration/core/drift_update_fit.hpp"
@@ -145,6 +146,9 @@ std::optional<DriftRecord> DriftMonitor::addPair(CalibrationPair pair) {
   last_index_ = last_index_ ? std::max(*last_index_, pair.candidate_index) : pair.candidate_index;
   // Held at the image's instant for the reference's time offset (issue 21).
   if (time_offset_s_) pair = rebasedAtTimeOffset(std::move(pair), *time_offset_s_);
+  // Its mask's distance map, once: every window that holds the pair builds evaluators over it
+  // (the window test, the timing check, the update's fit), which built the map again each time.
+  if (!pair.distance_map) pair.distance_map = sharedDistanceMap(pair.mask);
   // The watch's own time for this pair, whichever way it returns (seconds()).
   const auto started = std::chrono::steady_clock::now();
   auto elapsed = [&] {

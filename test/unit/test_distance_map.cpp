@@ -83,3 +83,21 @@ TEST(DistanceMap, FarAwayAndNaNProjectionsCostTheCapPlusTheBoxValue) {
 TEST(DistanceMap, RejectsAMaskWithoutPeople) {
   EXPECT_THROW(DistanceMap(cv::Mat::zeros(10, 10, CV_8UC1)), std::invalid_argument);
 }
+
+// The map a caller builds once for every evaluator of its pair: the same numbers as its own, and
+// null (not a throw) for the masks the evaluator itself reports with the pair's number.
+TEST(DistanceMap, SharedMapIsTheSameMapOrNullForAMaskItCannotRead) {
+  const cv::Mat mask = randomMask(48, 36, 3, 2);
+  const auto shared = thermal_lidar_calibration::sharedDistanceMap(mask);
+  ASSERT_TRUE(shared);
+  const DistanceMap own(mask);
+  EXPECT_EQ(shared->x0(), own.x0());
+  EXPECT_EQ(shared->y0(), own.y0());
+  ASSERT_EQ(shared->width(), own.width());
+  ASSERT_EQ(shared->height(), own.height());
+  for (int v = -4; v < 40; v += 5)
+    for (int u = -4; u < 52; u += 3) ASSERT_EQ(shared->atPixel(u, v), own.atPixel(u, v)) << u << "," << v;
+  EXPECT_FALSE(thermal_lidar_calibration::sharedDistanceMap(cv::Mat::zeros(10, 10, CV_8UC1)));
+  EXPECT_FALSE(thermal_lidar_calibration::sharedDistanceMap(cv::Mat()));
+  EXPECT_FALSE(thermal_lidar_calibration::sharedDistanceMap(cv::Mat::ones(10, 10, CV_32FC1)));
+}

@@ -9,6 +9,7 @@
 
 #include <opencv2/core.hpp>
 
+#include <memory>
 #include <vector>
 
 namespace thermal_lidar_calibration {
@@ -42,5 +43,10 @@ class DistanceMap {
   int x0_ = 0, y0_ = 0, width_ = 0, height_ = 0;
   std::vector<float> values_;
 };
+
+// The map of `mask` for a caller that builds it once for every evaluator of its pair
+// (CalibrationPair::distance_map); null for a mask it cannot be built from, which is then left to
+// the evaluator to report (it says which pair and what is wrong).
+std::shared_ptr<const DistanceMap> sharedDistanceMap(const cv::Mat& mask);
 
 }  // namespace thermal_lidar_calibration
