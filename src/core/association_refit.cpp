@@ -32,8 +32,7 @@ Signature signatureOf(const std::vector<CalibrationPair>& pairs) {
 // Each frame's distance map, built once for all the fits and checks that read its pair: every
 // round pairs the same candidate frames again, and each refit, the quality and the truth's loss
 // read them all. Frames are told apart by candidate_index when the candidates' are distinct
-// (a builder's always are); otherwise each pair gets its own map. A mask the map cannot be built
-// from is left to the evaluator, which says what is wrong with it.
+// (a builder's always are); otherwise each pair gets its own map.
 class DistanceMaps {
  public:
   explicit DistanceMaps(const std::vector<CalibrationPair>& candidates) {

@@ -66,8 +66,9 @@ struct CalibrationPair {
   // beside it saw them: it adds ring heights, not an independent scene, so the bootstrap leaves
   // such pairs out.
   bool outside_skip_rule = false;
-  // `mask`'s distance map, when a caller built it once for every evaluator of the pair (the
-  // association's rounds, the quality, the truth's loss); empty: each LossEvaluator builds its own.
+  // `mask`'s distance map, when a caller built it once for every evaluator of the pair
+  // (sharedDistanceMap: the association's rounds, the quality, the truth's loss, the drift watch's
+  // windows); empty: each LossEvaluator builds its own.
   // Whoever changes `mask` resets it.
   std::shared_ptr<const DistanceMap> distance_map;
 };
