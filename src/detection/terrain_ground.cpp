@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <vector>
 
 namespace thermal_lidar_calibration {
 namespace detection {
@@ -79,10 +81,8 @@ void TerrainGround::fitLevellingPlane(const std::vector<Eigen::Vector3f>& points
   double plane_z = 0;  // height of the plane under the sensor, in the levelled frame
   if (static_cast<int>(minima->size()) >= kLevelMinCells) {
     // RANSAC over planes within max_tilt_deg of level, then the plane refitted to its inliers:
-    // the steps of pcl::SACSegmentation (perpendicular plane, RANSAC, optimised coefficients),
-    // taken from PCL's sample_consensus library directly. Through SACSegmentation every program
-    // that links the detectors loaded libpcl_segmentation and, with it, libpcl_features, filters
-    // and ml: about 170k symbol relocations, 0.1 s of CPU at each start.
+    // pcl::SACSegmentation's steps, taken from libpcl_sample_consensus directly so that no
+    // program linking the detectors loads libpcl_segmentation (CMakeLists.txt says why).
     auto model = std::make_shared<pcl::SampleConsensusModelPerpendicularPlane<pcl::PointXYZ>>(minima);
     model->setAxis(Eigen::Vector3f::UnitZ());
     model->setEpsAngle(config_.max_tilt_deg * M_PI / 180.0);
