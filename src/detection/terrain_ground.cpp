@@ -89,7 +89,7 @@ void TerrainGround::fitLevellingPlane(const std::vector<Eigen::Vector3f>& points
     pcl::RandomSampleConsensus<pcl::PointXYZ> ransac(model, kLevelInlierM);
     ransac.setMaxIterations(200);
     Eigen::VectorXf coefficients;
-    std::vector<int> inliers;
+    pcl::Indices inliers;
     if (ransac.computeModel(0)) {
       ransac.getInliers(inliers);
       ransac.getModelCoefficients(coefficients);
