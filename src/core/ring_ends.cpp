@@ -17,6 +17,8 @@ constexpr double kMaxCoveredFraction = 0.05;
 // A ring's own spread of elevation, at most (the Ouster's offset beams move by ~0.01 deg across a
 // person at 5 m).
 constexpr double kMaxRingSpreadRad = 0.05 * 3.14159265358979 / 180.0;
+// At least this fraction of a person's points must lie on rings for its rings to be scan lines.
+constexpr double kMinOnRings = 0.5;
 
 }  // namespace
 
@@ -68,13 +70,22 @@ std::vector<RingEnd> findRingEnds(const std::vector<Eigen::Vector3f>& points,
     // scan line leaves the person: such a person has no ends.
     const double span = polar.back().elevation - polar.front().elevation;
     if (covered > std::max(kMaxCoveredFraction * span, ring_gap_rad)) continue;
+    // Sparse points at random heights also fall a few together by chance, spread over the gap;
+    // a scan line's points share one elevation.
+    const auto isRing = [&](std::size_t begin, std::size_t end) {
+      return static_cast<int>(end - begin) >= min_points &&
+             polar[end - 1].elevation - polar[begin].elevation <= kMaxRingSpreadRad;
+    };
+    // On a spinning LiDAR nearly every point of a person lies on such a ring. A few chance rings
+    // among points at random heights (a sparse or solid-state cluster) are not scan lines: their
+    // ends say nothing of the outline, and charged they pull the fit.
+    std::size_t on_rings = 0;
     for (const auto& [begin, end] : runs) {
-      // Sparse points at random heights also fall a few together by chance, spread over the gap;
-      // a scan line's points share one elevation.
-      if (static_cast<int>(end - begin) < min_points ||
-          polar[end - 1].elevation - polar[begin].elevation > kMaxRingSpreadRad) {
-        continue;
-      }
+      if (isRing(begin, end)) on_rings += end - begin;
+    }
+    if (static_cast<double>(on_rings) < kMinOnRings * static_cast<double>(polar.size())) continue;
+    for (const auto& [begin, end] : runs) {
+      if (!isRing(begin, end)) continue;
       std::vector<Polar> ring(polar.begin() + static_cast<std::ptrdiff_t>(begin),
                               polar.begin() + static_cast<std::ptrdiff_t>(end));
       std::sort(ring.begin(), ring.end(), [](const Polar& a, const Polar& b) { return a.azimuth < b.azimuth; });

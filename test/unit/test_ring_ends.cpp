@@ -351,6 +351,36 @@ TEST(RingEnds, PointsSpreadOverElevationsAreNoRing) {
   EXPECT_EQ(findRingEnds(points, labels).size(), 2u);
 }
 
+TEST(RingEnds, AFewChanceRingsAmongPointsAtRandomHeightsAreNoScanLines) {
+  // 12 points at scattered heights on a person (at least 0.4 deg apart, so no run covers any of
+  // its span) and one ring of 4 points among them (a sparse cluster where a few points share an
+  // elevation by chance): most of its points lie on no ring, so it has no ends. A person on scan
+  // lines with a few stray points keeps its rings' ends.
+  Rng rng(5);
+  std::vector<Eigen::Vector3f> points;
+  std::vector<std::int32_t> labels;
+  for (int k = 0; k < 12; ++k) {
+    points.push_back(polar(10.0, -10.0 + 0.6 * k + rng.uniform(-0.1, 0.1), rng.uniform(1.0, 4.0)));
+    labels.push_back(1);
+  }
+  for (int a = 0; a < 4; ++a) {
+    points.push_back(polar(10.0, -5.7, 1.5 + 0.2 * a));
+    labels.push_back(1);
+  }
+  EXPECT_TRUE(findRingEnds(points, labels).empty());
+  for (int ring = 0; ring < 4; ++ring) {
+    for (int a = 0; a < 6; ++a) {
+      points.push_back(polar(12.0, -8.0 + 1.33 * ring, -6.0 + 0.2 * a));
+      labels.push_back(2);
+    }
+  }
+  for (const double elevation : {-7.3, -6.0, -4.7}) {  // between its rings
+    points.push_back(polar(12.0, elevation, rng.uniform(-6.0, -5.0)));
+    labels.push_back(2);
+  }
+  EXPECT_EQ(findRingEnds(points, labels).size(), 8u);
+}
+
 TEST(RingEnds, TheDefaultRunReadsThemAndThePaperModeDoesNot) {
   const CameraModel camera = test_support::fieldsafeCamera(false);
   const Extrinsic truth = test_support::fieldsafeTruth();

@@ -31,8 +31,8 @@ struct RingEnd {
 // ring, a ring being a run of points whose elevations differ by less than `ring_gap_rad` from
 // the next; for every ring with at least `min_points` points on a label, its two ends by azimuth,
 // in that order; a run spread over more than 0.05 deg of elevation is no ring. A label whose runs
-// cover more than 5 % of its elevation span (and more than `ring_gap_rad`) has none: its points
-// are not on scan lines.
+// cover more than 5 % of its elevation span (and more than `ring_gap_rad`), or whose rings hold
+// less than half its points, has none: its points are not on scan lines.
 // Labels <= 0 (no person) are left out; without one label per point nothing is returned.
 std::vector<RingEnd> findRingEnds(const std::vector<Eigen::Vector3f>& points,
                                   const std::vector<std::int32_t>& labels,
