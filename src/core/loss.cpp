@@ -49,6 +49,7 @@ kernels::Points pointsOf(const PreparedPair& p) {
 struct PackedRingEnds {
   std::vector<std::int32_t> point, rows, offset;
   std::vector<float> side, first_row, half_step, edges;
+  std::vector<std::uint8_t> pairs_previous;
   int count = 0;
 
   PackedRingEnds() = default;
@@ -68,6 +69,7 @@ struct PackedRingEnds {
       rows.push_back(e.side > 0 ? static_cast<std::int32_t>(o.right.size()) : left);
       offset.push_back(starts[e.outline] + (e.side > 0 ? left : 0));
       half_step.push_back(e.half_step);
+      pairs_previous.push_back(e.pairs_previous ? 1 : 0);
     }
     count = static_cast<int>(point.size());
     // Padding lanes: point 0, no rows (so no gather), masked out of the sum.
@@ -78,6 +80,7 @@ struct PackedRingEnds {
     side.resize(padded, 1.0f);
     first_row.resize(padded, 0.0f);
     half_step.resize(padded, 0.0f);
+    pairs_previous.resize(padded, 0);
   }
 };
 
@@ -96,7 +99,7 @@ struct RingEndPoints {
 
 kernels::RingEnds viewOf(const PackedRingEnds& e, const RingEndPoints& p) {
   return {p.x.data(),        p.y.data(),      p.z.data(),         e.side.data(), e.first_row.data(),
-          e.rows.data(),     e.offset.data(), e.half_step.data(), e.edges.data(), e.count};
+          e.rows.data(),     e.offset.data(), e.half_step.data(), e.edges.data(), e.pairs_previous.data(), e.count};
 }
 
 }  // namespace
@@ -216,7 +219,8 @@ struct LossEvaluator::Impl {
   // The mean ringEndCost over the pair's assigned ends; an end behind the camera costs the cap.
   double ringEndCost(const Params& m, const PackedRingEnds& ends, const RingEndPoints& points) const {
     return static_cast<double>(
-               kernels::sumRingEnds(m.data(), distorted, lens, viewOf(ends, points), LossConfig::kRingEndCapPx)) /
+               kernels::sumRingEnds(m.data(), distorted, lens, viewOf(ends, points), LossConfig::kRingEndCapPx,
+                                    LossConfig::kRingWidthWeight)) /
            static_cast<double>(ends.count);
   }
 

@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define TLC_HAVE_AVX2_PATH 1
@@ -388,31 +389,26 @@ bool atLeastInside(const float* m, bool distorted, const Lens& lens, const Point
 namespace {
 
 template <bool kDistorted>
-float sumRingEndsScalarImpl(const float* m, const Lens& lens, const RingEnds& e, float cap) {
-  float sum = 0.0f;
+void ringEndOffsetsScalarImpl(const float* m, const Lens& lens, const RingEnds& e, float* out) {
   for (int i = 0; i < e.count; ++i) {
     float u, v;
-    sum += projectScalar<kDistorted>(m, lens, e.x[i], e.y[i], e.z[i], u, v)
-               ? ringEndCost(e.edges + e.offset[i], e.rows[i], static_cast<int>(e.first_row[i]),
-                             static_cast<int>(e.side[i]), u, v, e.half_step[i], cap)
-               : cap;
+    out[i] = projectScalar<kDistorted>(m, lens, e.x[i], e.y[i], e.z[i], u, v)
+                 ? ringEndOffset(e.edges + e.offset[i], e.rows[i], static_cast<int>(e.first_row[i]),
+                                 static_cast<int>(e.side[i]), u, v, e.half_step[i])
+                 : std::numeric_limits<float>::quiet_NaN();
   }
-  return sum;
 }
 
 #if TLC_HAVE_AVX2_PATH
-// ringEndCost on 8 ends at a time: the outline's two rows around each end gathered from the
+// ringEndOffset on 8 ends at a time: the outline's two rows around each end gathered from the
 // pair's columns (masked where a row lies outside the outline).
 // Same operations in the same order as the scalar code, lane by lane.
 template <bool kDistorted>
-TLC_AVX2 float sumRingEndsAvx2(const float* mp, const Lens& lens, const RingEnds& e, float cap) {
+TLC_AVX2 void ringEndOffsetsAvx2(const float* mp, const Lens& lens, const RingEnds& e, float* out) {
   __m256 m[12];
   for (int k = 0; k < 12; ++k) m[k] = _mm256_set1_ps(mp[k]);
   const __m256 one = _mm256_set1_ps(1.0f), minus_one = _mm256_set1_ps(-1.0f), zero = _mm256_setzero_ps();
-  const __m256 cap8 = _mm256_set1_ps(cap), nan = _mm256_set1_ps(std::numeric_limits<float>::quiet_NaN());
-  const __m256 abs_mask = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
-  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-  __m256 acc = zero;
+  const __m256 nan = _mm256_set1_ps(std::numeric_limits<float>::quiet_NaN());
   for (int i = 0; i < e.count; i += 8) {
     const Avx2Projection q = projectAvx2<kDistorted>(m, lens, _mm256_loadu_ps(e.x + i), _mm256_loadu_ps(e.y + i),
                                                      _mm256_loadu_ps(e.z + i));
@@ -436,32 +432,58 @@ TLC_AVX2 float sumRingEndsAvx2(const float* mp, const Lens& lens, const RingEnds
     const __m256 between = _mm256_add_ps(e0, _mm256_mul_ps(a, _mm256_sub_ps(e1, e0)));
     const __m256 column = _mm256_blendv_ps(_mm256_blendv_ps(e1, e0, fin0), between, _mm256_and_ps(fin0, fin1));
     const __m256 beyond = _mm256_mul_ps(_mm256_loadu_ps(e.side + i), _mm256_sub_ps(q.u, column));
-    const __m256 cost = _mm256_min_ps(
-        _mm256_and_ps(_mm256_add_ps(beyond, _mm256_loadu_ps(e.half_step + i)), abs_mask), cap8);
-    __m256 term = _mm256_blendv_ps(cap8, cost, _mm256_and_ps(ok, _mm256_or_ps(fin0, fin1)));
-    if (i + 8 > e.count) {
-      term = _mm256_and_ps(term, _mm256_castsi256_ps(_mm256_cmpgt_epi32(_mm256_set1_epi32(e.count - i), lane)));
-    }
-    acc = _mm256_add_ps(acc, term);
+    const __m256 offset = _mm256_add_ps(beyond, _mm256_loadu_ps(e.half_step + i));
+    _mm256_storeu_ps(out + i, _mm256_blendv_ps(nan, offset, _mm256_and_ps(ok, _mm256_or_ps(fin0, fin1))));
   }
-  return horizontalSum(acc);
 }
 #endif
+
+float endCost(float offset, float cap) { return offset == offset ? std::min(std::fabs(offset), cap) : cap; }
+
+// In the ends' order: a ring whose two ends are both measured costs its middle's offset and its
+// width's, the other ends their own offset (ring_ends.hpp, ringPairCost).
+float combineRingEnds(const float* offset, const std::uint8_t* pairs_previous, int count, float cap,
+                      float width_weight) {
+  float sum = 0.0f;
+  for (int i = 0; i < count; ++i) {
+    if (i + 1 < count && pairs_previous[i + 1] != 0 && offset[i] == offset[i] && offset[i + 1] == offset[i + 1]) {
+      sum += ringPairCost(offset[i], offset[i + 1], cap, width_weight);
+      ++i;
+    } else {
+      sum += endCost(offset[i], cap);
+    }
+  }
+  return sum;
+}
+
+// One pair's ends' signed offsets at a time, a buffer per thread: the loss runs candidates in parallel.
+std::vector<float>& offsetBuffer(int count) {
+  thread_local std::vector<float> buffer;
+  const std::size_t padded = static_cast<std::size_t>((count + kPointBlock - 1) / kPointBlock * kPointBlock);
+  if (buffer.size() < padded) buffer.resize(padded);
+  return buffer;
+}
 
 }  // namespace
 
-float sumRingEnds(const float* m, bool distorted, const Lens& lens, const RingEnds& ends, float cap) {
+float sumRingEnds(const float* m, bool distorted, const Lens& lens, const RingEnds& ends, float cap,
+                  float width_weight) {
 #if TLC_HAVE_AVX2_PATH
   if (cpuHasAvx2()) {
-    return distorted ? sumRingEndsAvx2<true>(m, lens, ends, cap) : sumRingEndsAvx2<false>(m, kNoLens, ends, cap);
+    float* offset = offsetBuffer(ends.count).data();
+    distorted ? ringEndOffsetsAvx2<true>(m, lens, ends, offset) : ringEndOffsetsAvx2<false>(m, kNoLens, ends, offset);
+    return combineRingEnds(offset, ends.pairs_previous, ends.count, cap, width_weight);
   }
 #endif
-  return sumRingEndsScalar(m, distorted, lens, ends, cap);
+  return sumRingEndsScalar(m, distorted, lens, ends, cap, width_weight);
 }
 
-float sumRingEndsScalar(const float* m, bool distorted, const Lens& lens, const RingEnds& ends, float cap) {
-  return distorted ? sumRingEndsScalarImpl<true>(m, lens, ends, cap)
-                   : sumRingEndsScalarImpl<false>(m, kNoLens, ends, cap);
+float sumRingEndsScalar(const float* m, bool distorted, const Lens& lens, const RingEnds& ends, float cap,
+                        float width_weight) {
+  float* offset = offsetBuffer(ends.count).data();
+  distorted ? ringEndOffsetsScalarImpl<true>(m, lens, ends, offset)
+            : ringEndOffsetsScalarImpl<false>(m, kNoLens, ends, offset);
+  return combineRingEnds(offset, ends.pairs_previous, ends.count, cap, width_weight);
 }
 
 bool projectPoint(const float* m, bool distorted, const Lens& lens, float x, float y, float z, float& u,

@@ -54,7 +54,7 @@ int countInsideScalar(const float* m, bool distorted, const Lens& lens, const Po
 // out): the end's point (a copy of the pair's, so the vector code loads rather than gathers it),
 // its side (+1 / -1), the image row of its outline's first column, how many rows the outline has,
 // where its columns start in `edges` (all the pair's outline columns, NaN where a row has none),
-// and where the end lies inside on average.
+// where the end lies inside on average, and whether the end before it is its ring's other end.
 struct RingEnds {
   const float* x;
   const float* y;
@@ -65,13 +65,17 @@ struct RingEnds {
   const std::int32_t* offset;
   const float* half_step;
   const float* edges;
+  const std::uint8_t* pairs_previous;  // 1: the end before it is the other end of its ring
   int count;
 };
 
-// Sum over the ends of ringEndCost at their points' pixels; an end behind the camera scores `cap`.
-float sumRingEnds(const float* m, bool distorted, const Lens& lens, const RingEnds& ends, float cap);
+// The ends' cost at their points' pixels: ringPairCost of each ring whose two ends are both
+// measured, ringEndCost of every other end (an end behind the camera scores `cap`).
+float sumRingEnds(const float* m, bool distorted, const Lens& lens, const RingEnds& ends, float cap,
+                  float width_weight);
 // The portable version sumRingEnds falls back to without AVX2+FMA (for tests, as sumPsiScalar).
-float sumRingEndsScalar(const float* m, bool distorted, const Lens& lens, const RingEnds& ends, float cap);
+float sumRingEndsScalar(const float* m, bool distorted, const Lens& lens, const RingEnds& ends, float cap,
+                        float width_weight);
 
 // One point's pixel as the kernels project it; false when it is behind the camera.
 bool projectPoint(const float* m, bool distorted, const Lens& lens, float x, float y, float z, float& u,

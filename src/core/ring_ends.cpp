@@ -186,7 +186,9 @@ RingEndSet assignRingEnds(const cv::Mat& mask, const std::vector<std::int32_t>& 
   stats.col(cv::CC_STAT_TOP) += box.y;
   const std::map<std::int32_t, int> owner = ownRegions(regions, labels, pixels, rules.min_inside);
   std::map<int, std::uint32_t> outline_of;  // region -> index into out.outlines
-  for (const RingEnd& e : ends) {
+  std::size_t previous = ends.size();        // index into `ends` of the last end kept
+  for (std::size_t k = 0; k < ends.size(); ++k) {
+    const RingEnd& e = ends[k];
     if (e.point >= pixels.size() || e.neighbour >= pixels.size()) continue;
     const auto own = owner.find(labels[e.point]);
     if (own == owner.end() || own->second == 0) continue;
@@ -201,7 +203,11 @@ RingEndSet assignRingEnds(const cv::Mat& mask, const std::vector<std::int32_t>& 
       out.outlines.push_back(outlineOf(regions, k, box, rules.clearance_px));
       known = outline_of.emplace(own->second, static_cast<std::uint32_t>(out.outlines.size() - 1)).first;
     }
-    out.ends.push_back({e.point, p.x() > n.x() ? 1 : -1, known->second, 0.5f * (p - n).norm()});
+    // findRingEnds gives each ring's two ends one after the other.
+    const bool pairs = k % 2 == 1 && previous == k - 1 && out.ends.back().outline == known->second &&
+                       out.ends.back().side != (p.x() > n.x() ? 1 : -1);
+    out.ends.push_back({e.point, p.x() > n.x() ? 1 : -1, known->second, 0.5f * (p - n).norm(), pairs});
+    previous = k;
   }
   return out;
 }

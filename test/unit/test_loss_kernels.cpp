@@ -147,7 +147,8 @@ TEST(LossKernels, RingEndKernelsAgreeWithRingEndCostEndByEnd) {
   // Ends at random points, each with an outline of random rows around where it projects (some
   // rows without a column, some ends beyond the outline's rows or behind the camera); 203 ends,
   // so the padded tail is covered. Each end's cost from the portable and the dispatched kernel
-  // against ringEndCost on the same pixel; their sums against the sum of the ends.
+  // against ringEndCost on the same pixel; their sums against the sum of the ends; then the same
+  // ends taken two by two as rings, against ringPairCost.
   const KernelData d;
   const float m[12] = {0.99f, 0.01f, -0.02f, 0.1f, -0.01f, 0.98f, 0.05f, -0.2f, 0.02f, -0.05f, 0.99f, 0.3f};
   const float pinhole[12] = {772, 0, 322, 0, 0, 772, 250, 0, 0, 0, 1, 0};
@@ -203,6 +204,7 @@ TEST(LossKernels, RingEndKernelsAgreeWithRingEndCostEndByEnd) {
     side.resize(208, 1.0f);
     first_row.resize(208, 0.0f);
     half_step.resize(208, 0.0f);
+    const std::vector<std::uint8_t> alone(208, 0);  // no end paired with the one before it
     double total = 0.0, vector_total = 0.0;
     for (int i = 0; i < count; ++i) {
       // One end at a time: its fields copied into arrays of one block.
@@ -210,27 +212,62 @@ TEST(LossKernels, RingEndKernelsAgreeWithRingEndCostEndByEnd) {
       std::vector<float> x1(8, 0.0f), y1(8, 0.0f), z1(8, 0.0f), s1(8, 1.0f), f1(8, 0.0f), h1(8, 0.0f);
       x1[0] = x[i], y1[0] = y[i], z1[0] = z[i];
       r1[0] = rows[i], o1[0] = offset[i], s1[0] = side[i], f1[0] = first_row[i], h1[0] = half_step[i];
-      const kernels::RingEnds one{x1.data(), y1.data(), z1.data(), s1.data(), f1.data(), r1.data(),
-                                  o1.data(),  h1.data(), edges.data(), 1};
+      const kernels::RingEnds one{x1.data(), y1.data(), z1.data(), s1.data(),    f1.data(),
+                                  r1.data(), o1.data(), h1.data(), edges.data(), alone.data(), 1};
       SCOPED_TRACE("end " + std::to_string(i));
       // The vector projection rounds differently (FMA): near a row boundary with a missing row the
       // outline jumps, so compare only ends more than 0.01 px from one.
       float u, v;
       kernels::projectPoint(mp, distorted, lens, x[i], y[i], z[i], u, v);
       const bool at_boundary = std::fabs(v - std::round(v)) < 0.01f;
-      EXPECT_FLOAT_EQ(kernels::sumRingEndsScalar(mp, distorted, lens, one, cap),
-                      expected[i]);
-      const float vector = kernels::sumRingEnds(mp, distorted, lens, one, cap);
+      EXPECT_FLOAT_EQ(kernels::sumRingEndsScalar(mp, distorted, lens, one, cap, 0.5f), expected[i]);
+      const float vector = kernels::sumRingEnds(mp, distorted, lens, one, cap, 0.5f);
       if (!at_boundary) EXPECT_NEAR(vector, expected[i], 1e-3);
       total += expected[i];
       vector_total += vector;
     }
-    const kernels::RingEnds all{x.data(),      y.data(),         z.data(),     side.data(), first_row.data(),
-                                rows.data(), offset.data(), half_step.data(), edges.data(), count};
-    EXPECT_NEAR(kernels::sumRingEndsScalar(mp, distorted, lens, all, cap), total,
-                1e-3);
+    const kernels::RingEnds all{x.data(),      y.data(),         z.data(),     side.data(),  first_row.data(),
+                                rows.data(), offset.data(), half_step.data(), edges.data(), alone.data(), count};
+    EXPECT_NEAR(kernels::sumRingEndsScalar(mp, distorted, lens, all, cap, 0.5f), total, 1e-3);
     // All ends at once: the same as one at a time (the padding lanes add nothing).
-    EXPECT_NEAR(kernels::sumRingEnds(mp, distorted, lens, all, cap),
-                vector_total, 1e-3);
+    EXPECT_NEAR(kernels::sumRingEnds(mp, distorted, lens, all, cap, 0.5f), vector_total, 1e-3);
+
+    // Every end paired with the one before it (ends 2k and 2k+1 as one ring): each pair costs
+    // ringPairCost of the two offsets when both are measured, else the two ends' own costs.
+    std::vector<std::uint8_t> paired(208, 0);
+    for (int i = 1; i < count; i += 2) paired[i] = 1;
+    double pair_total = 0.0, vector_pairs = 0.0;
+    for (int i = 0; i < count; i += 2) {
+      const auto offsetOf = [&](int k) {
+        float u, v;
+        return kernels::projectPoint(mp, distorted, lens, x[k], y[k], z[k], u, v)
+                   ? ringEndOffset(edges.data() + offset[k], rows[k], int(first_row[k]), int(side[k]), u, v,
+                                   half_step[k])
+                   : std::nanf("");
+      };
+      const float a = offsetOf(i);
+      const float b = i + 1 < count ? offsetOf(i + 1) : std::nanf("");
+      if (i + 1 < count && a == a && b == b) {
+        pair_total += ringPairCost(a, b, cap, 0.5f);
+      } else {
+        pair_total += expected[i] + (i + 1 < count ? expected[i + 1] : 0.0f);
+      }
+      const int n = std::min(2, count - i);
+      std::vector<std::int32_t> r2(8, 0), o2(8, 0);
+      std::vector<float> x2(8, 0.0f), y2(8, 0.0f), z2(8, 0.0f), s2(8, 1.0f), f2(8, 0.0f), h2(8, 0.0f);
+      std::vector<std::uint8_t> p2(8, 0);
+      for (int k = 0; k < n; ++k) {
+        x2[k] = x[i + k], y2[k] = y[i + k], z2[k] = z[i + k], r2[k] = rows[i + k], o2[k] = offset[i + k];
+        s2[k] = side[i + k], f2[k] = first_row[i + k], h2[k] = half_step[i + k], p2[k] = paired[i + k];
+      }
+      const kernels::RingEnds two{x2.data(), y2.data(), z2.data(), s2.data(),    f2.data(),
+                                  r2.data(), o2.data(), h2.data(), edges.data(), p2.data(), n};
+      vector_pairs += kernels::sumRingEnds(mp, distorted, lens, two, cap, 0.5f);
+    }
+    const kernels::RingEnds rings{x.data(),      y.data(),         z.data(),     side.data(),   first_row.data(),
+                                  rows.data(), offset.data(), half_step.data(), edges.data(), paired.data(), count};
+    EXPECT_NEAR(kernels::sumRingEndsScalar(mp, distorted, lens, rings, cap, 0.5f), pair_total, 1e-3);
+    EXPECT_NEAR(kernels::sumRingEnds(mp, distorted, lens, rings, cap, 0.5f), vector_pairs, 1e-3);
+    EXPECT_GT(std::fabs(pair_total - total), 1.0) << "pairing should change the sum";
   }
 }

@@ -156,15 +156,17 @@ TEST(RingEnds, TheTermIsZeroForEndsHalfAStepInsideTheOutlineAndGrowsEitherWay) {
   farther.translation = Eigen::Vector3d(0, 0, 0.1);
   const double without_ends_farther = plain.pairLoss(0, farther);
   EXPECT_NEAR(without_ends_farther, 0.0, 1e-6) << "the mask loss alone does not see a shrink";
-  EXPECT_GT(loss.pairLoss(0, farther), 0.5);
-  EXPECT_GT(loss.pairLoss(0, nearer), 0.5);
+  // Each end ~0.9 px off the same way: the ring's width off by ~1.8 px, weighed kRingWidthWeight.
+  EXPECT_GT(loss.pairLoss(0, farther), 0.4);
+  EXPECT_GT(loss.pairLoss(0, nearer), 0.4);
   EXPECT_NEAR(loss.withPixelRule(PixelRule::kNearest).pairLoss(0, farther), 0.0, 1e-6) << "the paper's rule";
 }
 
 TEST(RingEnds, TheEndsMoveWithTheirPersonToAnotherTimeOffset) {
   // The person of the test above walking right at 1 m/s, 1 m ahead: 2 px in 20 ms. At offset 0
   // its ends lie half a step inside; at +20 ms both are 2 px off (one beyond its outline, one
-  // inside by 2.5 px), so the ring-end term is 2 px whatever the mask loss does.
+  // inside by 2.5 px): the ring's middle is 2 px off, |a - b| = 4 px capped at 3, its width
+  // right, so the ring-end term is 3 px over its two ends, 1.5, whatever the mask loss does.
   const CameraModel camera = smallCamera();
   CalibrationPair pair = oneRingPair();
   PersonMotion walker;
@@ -178,8 +180,32 @@ TEST(RingEnds, TheEndsMoveWithTheirPersonToAnotherTimeOffset) {
   const LossEvaluator loss = plain.withRingEnds(pairs, at, 1.0);
   EXPECT_NEAR(loss.pairLoss(0, at) - plain.pairLoss(0, at), 0.0, 1e-5);
   const double moved = loss.withTimeOffset(0.02).pairLoss(0, at) - plain.withTimeOffset(0.02).pairLoss(0, at);
-  EXPECT_NEAR(moved, 2.0, 1e-3);
+  EXPECT_NEAR(moved, 1.5, 1e-3);
   EXPECT_NEAR(loss.withTimeOffset(0.02).withTimeOffset(0.0).pairLoss(0, at) - plain.pairLoss(0, at), 0.0, 1e-5);
+}
+
+TEST(RingEnds, ARingOnAnErodedMaskIsHeldByItsMiddle) {
+  // The person of oneRingPair with its mask eroded by 2 px (columns 42-58): at the true pose both
+  // ends lie 2 px beyond the outline, |a| = |b| = 2. Charged end by end, a shift of 1 px along
+  // the row costs nothing more (1 + 3 = 2 + 2); charged as the ring's middle and width it does:
+  // (0 + 0.5 * 3) / 2 ends at the truth, (2 + 0.5 * 3) / 2 a pixel either way.
+  const CameraModel camera = smallCamera();
+  CalibrationPair pair = oneRingPair();
+  pair.mask = cv::Mat::zeros(80, 100, CV_8UC1);
+  pair.mask(cv::Rect(42, 32, 17, 17)).setTo(1);
+  const std::vector<CalibrationPair> pairs{pair};
+  const LossEvaluator plain(camera, pairs, LossConfig{5.0, PixelRule::kBilinear});
+  const Extrinsic at = lidarToCamera();
+  const LossEvaluator loss = plain.withRingEnds(pairs, at, 1.0);
+  ASSERT_EQ(loss.ringEndCount(), 2u);
+  const auto ringTerm = [&](double shift_px) {
+    Extrinsic moved = at;
+    moved.translation = Eigen::Vector3d(shift_px / 100.0, 0, 0);  // f = 100 px, the ring 1 m ahead
+    return loss.pairLoss(0, moved) - plain.pairLoss(0, moved);
+  };
+  EXPECT_NEAR(ringTerm(0.0), 0.75, 1e-4);
+  EXPECT_NEAR(ringTerm(1.0), 1.75, 1e-4);
+  EXPECT_NEAR(ringTerm(-1.0), 1.75, 1e-4);
 }
 
 TEST(RingEnds, WithMasksErodedOrDilatedTheEndsTakeOutTheForwardLean) {
@@ -242,6 +268,19 @@ TEST(RingEnds, EachClusterIsMeasuredAgainstItsOwnRegionNotTheUnion) {
   ASSERT_EQ(set.outlines.size(), 2u);
   EXPECT_EQ(set.ends[0].side, -1);
   EXPECT_EQ(set.ends[1].side, 1);
+  // Each ring's two ends, one after the other: the second is paired with the first.
+  EXPECT_FALSE(set.ends[0].pairs_previous);
+  EXPECT_TRUE(set.ends[1].pairs_previous);
+  EXPECT_FALSE(set.ends[2].pairs_previous) << "another person's ring";
+  EXPECT_TRUE(set.ends[3].pairs_previous);
+  // Person 1's left end left out (its neighbour at the same column): its right end stands alone.
+  std::vector<Eigen::Vector2f> flat = pixels;
+  flat[1].x() = flat[0].x();
+  const RingEndSet lone = assignRingEnds(mask, labels, ends, flat);
+  ASSERT_EQ(lone.ends.size(), 3u);
+  EXPECT_FALSE(lone.ends[0].pairs_previous);
+  EXPECT_FALSE(lone.ends[1].pairs_previous);
+  EXPECT_TRUE(lone.ends[2].pairs_previous);
   EXPECT_NE(set.ends[0].outline, set.ends[2].outline);
   // Person 1's right end at u = 30 lies half a step (0.5 px) inside its own outline at 30.5:
   // no cost; against the union's outline (70.5) it would be 40 px inside.

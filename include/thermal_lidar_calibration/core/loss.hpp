@@ -48,9 +48,11 @@ struct LossConfig {
   // Beyond the paper, the sub-pixel rule only, on an evaluator whose ring ends were assigned
   // (LossEvaluator::withRingEnds, ring_ends.hpp): each pair's loss adds this times the mean over
   // its rings' ends of ringEndCost (how far each end lies from where it should against its own
-  // person's outline, along the row), at most kRingEndCapPx each. 0 = off.
+  // person's outline, along the row), at most kRingEndCapPx each; a ring with both ends measured
+  // costs ringPairCost, its width weighed kRingWidthWeight. 0 = off.
   double ring_end_weight = 0.0;
   static constexpr float kRingEndCapPx = 3.0f;
+  static constexpr float kRingWidthWeight = 0.5f;
   static const ParameterRanges<LossConfig>& ranges();  // checked by validate()
   void validate() const;
 };

@@ -10,6 +10,9 @@
 // each cluster's ends are measured against the region its points fall in, along the image row (a
 // ring crosses a person sideways; the nearest outline of a top ring's end may be a head's top),
 // and ends whose outline borders another region or the image border are left out.
+// A ring whose two ends are both measured is charged as its middle and its width (ringPairCost):
+// a segmentation that erodes or dilates a person moves both ends out or in by the same amount,
+// which leaves the middle where it was.
 
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
@@ -55,6 +58,8 @@ struct AssignedRingEnd {
   // Half the pixels from the end to the next point inward at assignment, where the end lies
   // inside the outline on average (a fit moves it by far less than the spacing changes).
   float half_step = 0.0f;
+  // The end before it in RingEndSet::ends is the other end of the same ring, on the same outline.
+  bool pairs_previous = false;
 };
 
 struct RingEndSet {
@@ -83,26 +88,45 @@ RingEndSet assignRingEnds(const cv::Mat& mask, const std::vector<std::int32_t>& 
 // has an outline: `cap`.
 float ringEndCost(const PersonOutline& outline, int side, float u, float v, float half_step, float cap);
 
-// The same on one side's columns (`edge[k]` for row first_row + k, `rows` of them): what the
-// loss kernels inline.
-inline float ringEndCost(const float* edge, int rows, int first_row, int side, float u, float v, float half_step,
-                         float cap) {
+// The signed form: s + half_step, NaN where neither row has an outline or the end is not on
+// the outline's rows. ringEndCost is min(|offset|, cap), cap for NaN.
+inline float ringEndOffset(const float* edge, int rows, int first_row, int side, float u, float v, float half_step) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
   const float f = v - static_cast<float>(first_row);
-  if (!(f >= -1.0f) || !(u == u) || !(f < static_cast<float>(rows))) return cap;
+  if (!(f >= -1.0f) || !(u == u) || !(f < static_cast<float>(rows))) return nan;
   const int r = static_cast<int>(std::floor(f));
   const float a = f - static_cast<float>(r);
-  const float e0 = r >= 0 ? edge[r] : std::numeric_limits<float>::quiet_NaN();
-  const float e1 = r + 1 < rows ? edge[r + 1] : std::numeric_limits<float>::quiet_NaN();
+  const float e0 = r >= 0 ? edge[r] : nan;
+  const float e1 = r + 1 < rows ? edge[r + 1] : nan;
   float column;
   if (std::isfinite(e0) && std::isfinite(e1)) {
     column = e0 + a * (e1 - e0);
   } else if (std::isfinite(e0) || std::isfinite(e1)) {
     column = std::isfinite(e0) ? e0 : e1;
   } else {
-    return cap;
+    return nan;
   }
   const float beyond = static_cast<float>(side) * (u - column);
-  return std::min(std::fabs(beyond + half_step), cap);
+  return beyond + half_step;
+}
+
+// The same on one side's columns (`edge[k]` for row first_row + k, `rows` of them).
+inline float ringEndCost(const float* edge, int rows, int first_row, int side, float u, float v, float half_step,
+                         float cap) {
+  const float offset = ringEndOffset(edge, rows, first_row, side, u, v, half_step);
+  return offset == offset ? std::min(std::fabs(offset), cap) : cap;
+}
+
+// One ring's two ends, both measured (ringEndOffset a and b, either side first): how far its middle
+// lies off, |a - b| (a shift along the row moves one end out and the other in), plus
+// width_weight times how far its width is off, |a + b| (an eroded or dilated mask, a nearer or
+// farther person), each at most `cap`. Charged end by end instead, |a| + |b| = max(|a - b|, |a + b|):
+// a mask eroded or dilated by k pixels leaves the middle free over +-k, and the realistic drives'
+// masks (0-2 px either way) left the roll and the yaw to their mask loss. The width is weighed
+// less because every segmentation's edge moves it (at 0 and at 1 instead of 0.5 the realistic
+// timing drives' roll scattered more: docs/validation/accuracy.md).
+inline float ringPairCost(float a, float b, float cap, float width_weight) {
+  return std::min(std::fabs(a - b), cap) + width_weight * std::min(std::fabs(a + b), cap);
 }
 
 }  // namespace thermal_lidar_calibration

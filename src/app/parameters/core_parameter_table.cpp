@@ -267,8 +267,9 @@ void addOptimizerRows(ParameterTable<CoreParameters>& t) {
   refine.real("refine_ring_end_weight", &RefineConfig::ring_end_weight, kConfigRange, "",
               "the refinement's sub-pixel loss also charges each LiDAR ring's first and last point on a person "
               "how far along the image row it lies from where it should, half a point spacing inside that "
-              "person's own mask region (a mask loss alone is lowest where the projected people are smaller), "
-              "this much per pair; 0: off");
+              "person's own mask region (a mask loss alone is lowest where the projected people are smaller; a "
+              "ring with both ends measured is charged its middle and, weighed half, its width), this much per "
+              "pair; 0: off");
   refine.integer("refine_evolution_generations", &RefineConfig::evolution_generations, kConfigRange, "",
                  "with refine local, Algorithm 1 runs at most this many generations (and never more than "
                  "max_iterations): the evolution only has to find the basin the refinement then searches; 0: "
