@@ -216,7 +216,8 @@ struct LossEvaluator::Impl {
     return pairLoss(m, i, pair, viewOf(pair.distance), pointsOf(pair), rule, margin, ring_weight);
   }
 
-  // The mean ringEndCost over the pair's assigned ends; an end behind the camera costs the cap.
+  // The pair's ring-end charge (kernels::sumRingEnds: ringPairCost per ring with both ends measured,
+  // ringEndCost per other end; behind the camera the cap) over its assigned ends.
   double ringEndCost(const Params& m, const PackedRingEnds& ends, const RingEndPoints& points) const {
     return static_cast<double>(
                kernels::sumRingEnds(m.data(), distorted, lens, viewOf(ends, points), LossConfig::kRingEndCapPx,
