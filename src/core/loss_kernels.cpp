@@ -438,8 +438,6 @@ TLC_AVX2 void ringEndOffsetsAvx2(const float* mp, const Lens& lens, const RingEn
 }
 #endif
 
-float endCost(float offset, float cap) { return offset == offset ? std::min(std::fabs(offset), cap) : cap; }
-
 // In the ends' order: a ring whose two ends are both measured costs its middle's offset and its
 // width's, the other ends their own offset (ring_ends.hpp, ringPairCost).
 float combineRingEnds(const float* offset, const std::uint8_t* pairs_previous, int count, float cap,
@@ -450,7 +448,7 @@ float combineRingEnds(const float* offset, const std::uint8_t* pairs_previous, i
       sum += ringPairCost(offset[i], offset[i + 1], cap, width_weight);
       ++i;
     } else {
-      sum += endCost(offset[i], cap);
+      sum += ringEndCharge(offset[i], cap);
     }
   }
   return sum;

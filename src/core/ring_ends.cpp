@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <utility>
 
 namespace thermal_lidar_calibration {
 namespace {
@@ -79,13 +80,15 @@ std::vector<RingEnd> findRingEnds(const std::vector<Eigen::Vector3f>& points,
     // On a spinning LiDAR nearly every point of a person lies on such a ring. A few chance rings
     // among points at random heights (a sparse or solid-state cluster) are not scan lines: their
     // ends say nothing of the outline, and charged they pull the fit.
+    std::vector<std::pair<std::size_t, std::size_t>> rings;
     std::size_t on_rings = 0;
     for (const auto& [begin, end] : runs) {
-      if (isRing(begin, end)) on_rings += end - begin;
+      if (!isRing(begin, end)) continue;
+      rings.emplace_back(begin, end);
+      on_rings += end - begin;
     }
     if (static_cast<double>(on_rings) < kMinOnRings * static_cast<double>(polar.size())) continue;
-    for (const auto& [begin, end] : runs) {
-      if (!isRing(begin, end)) continue;
+    for (const auto& [begin, end] : rings) {
       std::vector<Polar> ring(polar.begin() + static_cast<std::ptrdiff_t>(begin),
                               polar.begin() + static_cast<std::ptrdiff_t>(end));
       std::sort(ring.begin(), ring.end(), [](const Polar& a, const Polar& b) { return a.azimuth < b.azimuth; });
@@ -203,10 +206,11 @@ RingEndSet assignRingEnds(const cv::Mat& mask, const std::vector<std::int32_t>& 
       out.outlines.push_back(outlineOf(regions, k, box, rules.clearance_px));
       known = outline_of.emplace(own->second, static_cast<std::uint32_t>(out.outlines.size() - 1)).first;
     }
+    const int side = p.x() > n.x() ? 1 : -1;
     // findRingEnds gives each ring's two ends one after the other.
     const bool pairs = k % 2 == 1 && previous == k - 1 && out.ends.back().outline == known->second &&
-                       out.ends.back().side != (p.x() > n.x() ? 1 : -1);
-    out.ends.push_back({e.point, p.x() > n.x() ? 1 : -1, known->second, 0.5f * (p - n).norm(), pairs});
+                       out.ends.back().side != side;
+    out.ends.push_back({e.point, side, known->second, 0.5f * (p - n).norm(), pairs});
     previous = k;
   }
   return out;

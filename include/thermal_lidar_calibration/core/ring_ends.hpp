@@ -110,11 +110,15 @@ inline float ringEndOffset(const float* edge, int rows, int first_row, int side,
   return beyond + half_step;
 }
 
+// A lone end's charge from its ringEndOffset: |offset|, at most `cap`; `cap` when not measured.
+inline float ringEndCharge(float offset, float cap) {
+  return offset == offset ? std::min(std::fabs(offset), cap) : cap;
+}
+
 // The same on one side's columns (`edge[k]` for row first_row + k, `rows` of them).
 inline float ringEndCost(const float* edge, int rows, int first_row, int side, float u, float v, float half_step,
                          float cap) {
-  const float offset = ringEndOffset(edge, rows, first_row, side, u, v, half_step);
-  return offset == offset ? std::min(std::fabs(offset), cap) : cap;
+  return ringEndCharge(ringEndOffset(edge, rows, first_row, side, u, v, half_step), cap);
 }
 
 // One ring's two ends, both measured (ringEndOffset a and b, either side first): how far its middle
