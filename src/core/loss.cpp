@@ -399,6 +399,20 @@ double LossEvaluator::loss(const Extrinsic& extrinsic, const std::vector<std::si
 void LossEvaluator::lossBatch(const std::vector<Extrinsic>& candidates,
                               const std::vector<std::size_t>& subset, std::vector<double>& out,
                               int threads) const {
+  const std::size_t pair_count = sumOverPairs(candidates, subset, out, threads, [](double loss) { return loss; });
+  for (double& v : out) v /= static_cast<double>(pair_count);
+}
+
+void LossEvaluator::pairsAboveBatch(const std::vector<Extrinsic>& candidates,
+                                    const std::vector<std::size_t>& subset, double level,
+                                    std::vector<double>& out, int threads) const {
+  sumOverPairs(candidates, subset, out, threads, [level](double loss) { return loss > level ? 1.0 : 0.0; });
+}
+
+template <typename Term>
+std::size_t LossEvaluator::sumOverPairs(const std::vector<Extrinsic>& candidates,
+                                        const std::vector<std::size_t>& subset, std::vector<double>& out,
+                                        int threads, Term term) const {
   std::vector<std::size_t> all;
   const std::vector<std::size_t>* pairs = &subset;
   if (subset.empty()) {
@@ -424,7 +438,6 @@ void LossEvaluator::lossBatch(const std::vector<Extrinsic>& candidates,
   team = std::max(1, std::min(team, blocks));
   const PixelRule rule = config_.pixel_rule;
   const float margin = marginOf(config_, rule);
-  const double pair_count = static_cast<double>(pairs->size());
 #pragma omp parallel for schedule(dynamic, 1) num_threads(team)
   for (int b = 0; b < blocks; ++b) {
     const std::size_t begin = static_cast<std::size_t>(b) * block;
@@ -436,14 +449,16 @@ void LossEvaluator::lossBatch(const std::vector<Extrinsic>& candidates,
       const kernels::MapView map = viewOf(pair.distance);
       const kernels::Points pts = pointsOf(pair);
       for (std::size_t c = begin; c < end; ++c) {
-        sums[c - begin] += impl_->pairLoss(params[c], pi, pair, map, pts, rule, margin, config_.ring_end_weight);
+        sums[c - begin] +=
+            term(impl_->pairLoss(params[c], pi, pair, map, pts, rule, margin, config_.ring_end_weight));
       }
     }
-    for (std::size_t c = begin; c < end; ++c) out[c] = sums[c - begin] / pair_count;
+    for (std::size_t c = begin; c < end; ++c) out[c] = sums[c - begin];
   }
   std::uint64_t per_candidate = 0;
   for (std::size_t pi : *pairs) per_candidate += impl_->pairs[pi].count;
   impl_->points += per_candidate * n;
+  return pairs->size();
 }
 
 double LossEvaluator::insideFraction(std::size_t pair, const Extrinsic& extrinsic) const {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace thermal_lidar_calibration {
 namespace {
@@ -57,18 +58,25 @@ class CentringSpace {
   double rad_per_px_ = 0.0, m_per_px_ = 0.0, roll_rad_per_px_ = 0.0;
 };
 
+// The margin's reading at points of the space: Eq. (3) over `pairs`, or, given `outside_px`, how
+// many of them (duplicates counted) cost more than that (the region of config.outlying_fraction).
 template <int N>
 class SpaceLoss {
  public:
   SpaceLoss(const LossEvaluator& loss, const CentringSpace& space, const std::vector<std::size_t>& pairs,
-            int threads, std::uint64_t& evaluations)
-      : loss_(loss), space_(space), pairs_(pairs), threads_(threads), evaluations_(evaluations) {}
+            int threads, std::uint64_t& evaluations, std::optional<double> outside_px = std::nullopt)
+      : loss_(loss), space_(space), pairs_(pairs), threads_(threads), evaluations_(evaluations),
+        outside_px_(outside_px) {}
   std::vector<double> operator()(const std::vector<Point<N>>& qs) const {
     std::vector<Extrinsic> candidates;
     candidates.reserve(qs.size());
     for (const Point<N>& q : qs) candidates.push_back(space_.at<N>(q));
     std::vector<double> out;
-    loss_.lossBatch(candidates, pairs_, out, threads_);
+    if (outside_px_) {
+      loss_.pairsAboveBatch(candidates, pairs_, *outside_px_, out, threads_);
+    } else {
+      loss_.lossBatch(candidates, pairs_, out, threads_);
+    }
     evaluations_ += qs.size();
     return out;
   }
@@ -79,7 +87,14 @@ class SpaceLoss {
   const std::vector<std::size_t>& pairs_;
   int threads_;
   std::uint64_t& evaluations_;
+  std::optional<double> outside_px_;
 };
+
+// The region's level in pairs: at most this many may leave the margin (half a pair above the
+// whole number, so that the count's comparison does not hang on rounding).
+double outlyingLevel(double fraction, std::size_t pairs) {
+  return std::floor(fraction * static_cast<double>(pairs)) + 0.5;
+}
 
 std::vector<std::size_t> keepOnly(const std::vector<std::size_t>& pairs, const std::vector<std::size_t>& allowed) {
   std::vector<std::size_t> out;
@@ -113,6 +128,20 @@ void applyCentre(const CentringSpace& space, const Point<N>& centre, VerticalCen
   out.shift_rotation_px = centre[0];
   out.shift_translation_px = centre[1];
   if constexpr (N == 3) out.shift_roll_px = centre[2];
+}
+
+// The region {f <= level} around `centre`: its centre, and its outline there in the resamples'
+// directions (where their traces start).
+template <int N, typename F>
+void traceRegion(const F& f, double level, const CentringSpace& space, const VerticalCentringConfig& config,
+                 Point<N> centre, VerticalCentringOutcome& out) {
+  if (!regionCentre(f, centre, level, directionsFor<N>(config.rays), config.iterations, kBisections) ||
+      !traceOutline(f, centre, directionsFor<N>(config.resample_rays).rays, level, config.resample_bisections,
+                    out.resample_reach_px)) {
+    out.skipped_because = "region unbounded";
+    return;
+  }
+  applyCentre(space, centre, out);
 }
 
 // centreVertically's work past the checks, in the plane (N = 2) or with the roll (N = 3).
@@ -154,19 +183,14 @@ void centreEstimate(const LossEvaluator& with_margin, const CentringSpace& space
     out.skipped_because = "points do not fit within the margin";
     return;
   }
-  const SpaceLoss<N> f(with_margin, space, fitting, threads, out.evaluations);
   out.level_px = best * (1.0 + config.tolerance) + kAbsoluteTolerance;
-  if (!regionCentre(f, centre, out.level_px, directionsFor<N>(config.rays), config.iterations, kBisections)) {
-    out.skipped_because = "region unbounded";
-    return;
+  if (config.outlying_fraction > 0.0) {
+    const SpaceLoss<N> g(with_margin, space, fitting, threads, out.evaluations, config.pair_fit_px);
+    traceRegion(g, outlyingLevel(config.outlying_fraction, fitting.size()), space, config, centre, out);
+  } else {
+    const SpaceLoss<N> f(with_margin, space, fitting, threads, out.evaluations);
+    traceRegion(f, out.level_px, space, config, centre, out);
   }
-  // The outline around the centre in the resamples' directions: where their traces start.
-  if (!traceOutline(f, centre, directionsFor<N>(config.resample_rays).rays, out.level_px,
-                    config.resample_bisections, out.resample_reach_px)) {
-    out.skipped_because = "region unbounded";
-    return;
-  }
-  applyCentre(space, centre, out);
 }
 
 // centreResample's work past the checks.
@@ -185,8 +209,18 @@ void centreResampleIn(const LossEvaluator& with_margin, const CentringSpace& spa
   }
   out.best_cost_px = here;
   out.level_px = std::max(estimate.level_px, here * (1.0 + config.tolerance) + kAbsoluteTolerance);
-  if (!regionCentre(f, centre, out.level_px, directionsFor<N>(config.resample_rays), 1, config.resample_bisections,
-                    &estimate.resample_reach_px)) {
+  bool traced = false;
+  if (config.outlying_fraction > 0.0) {
+    // As many pairs may leave the margin as the estimate's share allows, or as already do here.
+    const SpaceLoss<N> g(with_margin, space, fitting, threads, out.evaluations, config.pair_fit_px);
+    const double level = std::max(outlyingLevel(config.outlying_fraction, fitting.size()), g({centre})[0] + 0.5);
+    traced = regionCentre(g, centre, level, directionsFor<N>(config.resample_rays), 1, config.resample_bisections,
+                          &estimate.resample_reach_px);
+  } else {
+    traced = regionCentre(f, centre, out.level_px, directionsFor<N>(config.resample_rays), 1,
+                          config.resample_bisections, &estimate.resample_reach_px);
+  }
+  if (!traced) {
     out.skipped_because = "region unbounded";
     return;
   }

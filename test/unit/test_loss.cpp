@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 
 using namespace thermal_lidar_calibration;
 
@@ -169,6 +170,32 @@ TEST(Loss, BatchEqualsSingleAndDoesNotDependOnThreads) {
     EXPECT_EQ(one[i], two[i]);
     EXPECT_EQ(one[i], loss.loss(candidates[i]));
   }
+}
+
+// The vertical centring's region counts the pairs that leave the margin: per candidate, the pairs
+// of the subset (duplicates counted) whose Eq. (1) is above the level, as pairLoss says one by one.
+TEST(Loss, PairsAboveCountsWhatPairLossSaysWithAnyThreadCount) {
+  const CameraModel camera = smallCamera();
+  // At the identity pair 0's point lies 5 px left of the person pixel, pair 1's 240 px right; the
+  // candidates move both right by 0.2 px each.
+  const std::vector<CalibrationPair> pairs = {pairWith({{0.05, 0, 1}}), pairWith({{2.5, 0, 1}})};
+  const LossEvaluator loss(camera, pairs, LossConfig{});
+  std::vector<Extrinsic> candidates(40);
+  for (std::size_t i = 0; i < candidates.size(); ++i) candidates[i].translation.x() = 0.002 * i;
+  const std::vector<std::size_t> subset = {0, 1, 1};
+  std::vector<double> one, two;
+  loss.pairsAboveBatch(candidates, subset, 3.0, one, 1);
+  loss.pairsAboveBatch(candidates, subset, 3.0, two, 2);
+  ASSERT_EQ(one.size(), candidates.size());
+  std::set<double> seen;
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    double expected = 0.0;
+    for (std::size_t i : subset) expected += loss.pairLoss(i, candidates[c]) > 3.0 ? 1.0 : 0.0;
+    EXPECT_EQ(one[c], expected) << "candidate " << c;
+    EXPECT_EQ(two[c], expected) << "candidate " << c;
+    seen.insert(expected);
+  }
+  EXPECT_EQ(seen, (std::set<double>{2.0, 3.0})) << "pair 0 comes within the level along the way";
 }
 
 TEST(Loss, RejectsAMaskThatDisagreesWithTheCamera) {

@@ -132,6 +132,9 @@ struct VerticalCentringConfig {
                                    // at the plane's best pose (0: keep every pair)
   double min_fitting_fraction = 0.25;  // applied only when at least this share of the pairs fit
   double tolerance = 0.02;         // region: loss <= best * (1 + tolerance) + 1e-5 px
+  double outlying_fraction = 0.02; // region instead: at most this share of the fitting pairs
+                                   // leave the margin (their cost above pair_fit_px); 0: none
+                                   // may, the loss's level above
   int rays = 24;                   // directions sampled to trace the region's outline
   int iterations = 3;              // outline traced again from each new centre
   int resample_rays = 8;           // the bootstrap's resamples: fewer directions,

@@ -124,6 +124,10 @@ class LossEvaluator {
   // numbers do not depend on the thread count.
   void lossBatch(const std::vector<Extrinsic>& candidates, const std::vector<std::size_t>& subset,
                  std::vector<double>& out, int threads) const;
+  // For many candidates, how many of the given pairs (duplicates counted; all pairs when `subset`
+  // is empty) have Eq. (1) above `level`: out[i] for candidates[i]. Parallel as lossBatch.
+  void pairsAboveBatch(const std::vector<Extrinsic>& candidates, const std::vector<std::size_t>& subset,
+                       double level, std::vector<double>& out, int threads) const;
   // Fraction of pair i's points in front of the camera that land inside the image.
   double insideFraction(std::size_t pair, const Extrinsic& extrinsic) const;
   // Algorithm 1's acceptance test for an initial individual: does some pair in `pairs` put at
@@ -139,6 +143,11 @@ class LossEvaluator {
  private:
   struct Impl;
   LossEvaluator(CameraModel camera, LossConfig config, std::shared_ptr<Impl> impl);
+  // lossBatch's and pairsAboveBatch's loop: out[c] is the sum of term(Eq. (1)) over the subset's
+  // pairs, in its order, for candidates[c]; returns how many pairs that is.
+  template <typename Term>
+  std::size_t sumOverPairs(const std::vector<Extrinsic>& candidates, const std::vector<std::size_t>& subset,
+                           std::vector<double>& out, int threads, Term term) const;
   CameraModel camera_;
   LossConfig config_;
   std::shared_ptr<Impl> impl_;
