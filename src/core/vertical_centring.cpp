@@ -90,6 +90,12 @@ class SpaceLoss {
   std::optional<double> outside_px_;
 };
 
+// What the region reads: with outlying_fraction, how many pairs cost more than pair_fit_px (a
+// pair that fits); without, the loss.
+std::optional<double> regionCount(const VerticalCentringConfig& config) {
+  return config.outlying_fraction > 0.0 ? std::optional<double>(config.pair_fit_px) : std::nullopt;
+}
+
 // The region's level in pairs: at most this many may leave the margin (half a pair above the
 // whole number, so that the count's comparison does not hang on rounding).
 double outlyingLevel(double fraction, std::size_t pairs) {
@@ -128,20 +134,6 @@ void applyCentre(const CentringSpace& space, const Point<N>& centre, VerticalCen
   out.shift_rotation_px = centre[0];
   out.shift_translation_px = centre[1];
   if constexpr (N == 3) out.shift_roll_px = centre[2];
-}
-
-// The region {f <= level} around `centre`: its centre, and its outline there in the resamples'
-// directions (where their traces start).
-template <int N, typename F>
-void traceRegion(const F& f, double level, const CentringSpace& space, const VerticalCentringConfig& config,
-                 Point<N> centre, VerticalCentringOutcome& out) {
-  if (!regionCentre(f, centre, level, directionsFor<N>(config.rays), config.iterations, kBisections) ||
-      !traceOutline(f, centre, directionsFor<N>(config.resample_rays).rays, level, config.resample_bisections,
-                    out.resample_reach_px)) {
-    out.skipped_because = "region unbounded";
-    return;
-  }
-  applyCentre(space, centre, out);
 }
 
 // centreVertically's work past the checks, in the plane (N = 2) or with the roll (N = 3).
@@ -183,14 +175,21 @@ void centreEstimate(const LossEvaluator& with_margin, const CentringSpace& space
     out.skipped_because = "points do not fit within the margin";
     return;
   }
+  const SpaceLoss<N> f(with_margin, space, fitting, threads, out.evaluations, regionCount(config));
   out.level_px = best * (1.0 + config.tolerance) + kAbsoluteTolerance;
-  if (config.outlying_fraction > 0.0) {
-    const SpaceLoss<N> g(with_margin, space, fitting, threads, out.evaluations, config.pair_fit_px);
-    traceRegion(g, outlyingLevel(config.outlying_fraction, fitting.size()), space, config, centre, out);
-  } else {
-    const SpaceLoss<N> f(with_margin, space, fitting, threads, out.evaluations);
-    traceRegion(f, out.level_px, space, config, centre, out);
+  const double level =
+      config.outlying_fraction > 0.0 ? outlyingLevel(config.outlying_fraction, fitting.size()) : out.level_px;
+  if (!regionCentre(f, centre, level, directionsFor<N>(config.rays), config.iterations, kBisections)) {
+    out.skipped_because = "region unbounded";
+    return;
   }
+  // The outline around the centre in the resamples' directions: where their traces start.
+  if (!traceOutline(f, centre, directionsFor<N>(config.resample_rays).rays, level, config.resample_bisections,
+                    out.resample_reach_px)) {
+    out.skipped_because = "region unbounded";
+    return;
+  }
+  applyCentre(space, centre, out);
 }
 
 // centreResample's work past the checks.
@@ -209,18 +208,13 @@ void centreResampleIn(const LossEvaluator& with_margin, const CentringSpace& spa
   }
   out.best_cost_px = here;
   out.level_px = std::max(estimate.level_px, here * (1.0 + config.tolerance) + kAbsoluteTolerance);
-  bool traced = false;
-  if (config.outlying_fraction > 0.0) {
-    // As many pairs may leave the margin as the estimate's share allows, or as already do here.
-    const SpaceLoss<N> g(with_margin, space, fitting, threads, out.evaluations, config.pair_fit_px);
-    const double level = std::max(outlyingLevel(config.outlying_fraction, fitting.size()), g({centre})[0] + 0.5);
-    traced = regionCentre(g, centre, level, directionsFor<N>(config.resample_rays), 1, config.resample_bisections,
-                          &estimate.resample_reach_px);
-  } else {
-    traced = regionCentre(f, centre, out.level_px, directionsFor<N>(config.resample_rays), 1,
-                          config.resample_bisections, &estimate.resample_reach_px);
-  }
-  if (!traced) {
+  // Counting, as many pairs may leave the margin as the estimate's share allows, or as already do here.
+  const SpaceLoss<N> region(with_margin, space, fitting, threads, out.evaluations, regionCount(config));
+  const double level = config.outlying_fraction > 0.0
+                           ? std::max(outlyingLevel(config.outlying_fraction, fitting.size()), region({centre})[0] + 0.5)
+                           : out.level_px;
+  if (!regionCentre(region, centre, level, directionsFor<N>(config.resample_rays), 1, config.resample_bisections,
+                    &estimate.resample_reach_px)) {
     out.skipped_because = "region unbounded";
     return;
   }
