@@ -102,6 +102,12 @@ double outlyingLevel(double fraction, std::size_t pairs) {
   return std::floor(fraction * static_cast<double>(pairs)) + 0.5;
 }
 
+// The region's level over `fitting` pairs, in what regionCount says the region reads: the pairs
+// that may leave the margin, or the loss level `loss_level`.
+double regionLevel(const VerticalCentringConfig& config, std::size_t fitting, double loss_level) {
+  return regionCount(config) ? outlyingLevel(config.outlying_fraction, fitting) : loss_level;
+}
+
 std::vector<std::size_t> keepOnly(const std::vector<std::size_t>& pairs, const std::vector<std::size_t>& allowed) {
   std::vector<std::size_t> out;
   for (const std::size_t i : pairs) {
@@ -177,8 +183,7 @@ void centreEstimate(const LossEvaluator& with_margin, const CentringSpace& space
   }
   const SpaceLoss<N> f(with_margin, space, fitting, threads, out.evaluations, regionCount(config));
   out.level_px = best * (1.0 + config.tolerance) + kAbsoluteTolerance;
-  const double level =
-      config.outlying_fraction > 0.0 ? outlyingLevel(config.outlying_fraction, fitting.size()) : out.level_px;
+  const double level = regionLevel(config, fitting.size(), out.level_px);
   if (!regionCentre(f, centre, level, directionsFor<N>(config.rays), config.iterations, kBisections)) {
     out.skipped_because = "region unbounded";
     return;
@@ -210,9 +215,8 @@ void centreResampleIn(const LossEvaluator& with_margin, const CentringSpace& spa
   out.level_px = std::max(estimate.level_px, here * (1.0 + config.tolerance) + kAbsoluteTolerance);
   // Counting, as many pairs may leave the margin as the estimate's share allows, or as already do here.
   const SpaceLoss<N> region(with_margin, space, fitting, threads, out.evaluations, regionCount(config));
-  const double level = config.outlying_fraction > 0.0
-                           ? std::max(outlyingLevel(config.outlying_fraction, fitting.size()), region({centre})[0] + 0.5)
-                           : out.level_px;
+  double level = regionLevel(config, fitting.size(), out.level_px);
+  if (regionCount(config)) level = std::max(level, region({centre})[0] + 0.5);
   if (!regionCentre(region, centre, level, directionsFor<N>(config.resample_rays), 1, config.resample_bisections,
                     &estimate.resample_reach_px)) {
     out.skipped_because = "region unbounded";

@@ -79,7 +79,9 @@ struct VerticalCentringOutcome {
   double shift_roll_px = 0.0;         // the move, roll part (pixels at the image's side edge)
   std::size_t fitting_pairs = 0;       // pairs (with duplicates) that fit within the margin
   std::vector<std::size_t> fitting;    // those pairs' indices, sorted, once each
-  double level_px = 0.0;               // the region: poses whose loss with the margin is <= this
+  double level_px = 0.0;               // the loss with the margin that counts as fitting: the
+                                       // region's level with outlying_fraction 0 (otherwise the
+                                       // region counts pairs), and the resamples' bar for their start
   std::vector<double> resample_reach_px;  // the region's outline around the centre, in the
                                           // resamples' directions (centreResample starts there)
   std::uint64_t evaluations = 0;
