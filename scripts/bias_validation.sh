@@ -19,7 +19,8 @@
 # preset moves the result, each of its parts alone on a clean drive: range_noise (2 cm),
 # mask_edges (+-2 px), misses (3 %), false_clusters (3 %), false_masks (2 %); and the mask edges
 # one way only: masks_grown (dilated 0-2 px), masks_shrunk (eroded 0-2 px), masks_shrunk_1px
-# (eroded 0-1 px).
+# (eroded 0-1 px); and the two parts of masks_shrunk: masks_thin_lost (only the parts narrower
+# than the erosion lost), masks_outline_eroded (eroded, those parts kept).
 # --frames N drives N frames instead of the generator's 1200 (how the spread falls with the data);
 # its bags and runs are named <noise>_<N>f (realistic_2400f), a row of their own in the table.
 # Usage: scripts/bias_validation.sh [--rigs "fieldsafe ms2"] [--noise "clean realistic"]
@@ -49,7 +50,7 @@ while [ $# -gt 0 ]; do
     --config) label_config["${2%%=*}"]="$(realpath "${2#*=}")"; shift 2 ;;
     --keep-raw) keep_raw=1; shift ;;
     --frames) frames="$2"; shift 2 ;;
-    -h|--help) sed -n '2,29p' "${BASH_SOURCE[0]}"; exit 0 ;;
+    -h|--help) sed -n '2,30p' "${BASH_SOURCE[0]}"; exit 0 ;;
     *) seeds+=("$1"); shift ;;
   esac
 done
@@ -76,6 +77,8 @@ noise_options() {  # name
     masks_grown) echo "--noise clean --mask-edge-px 2 --mask-edge-sign grow" ;;
     masks_shrunk) echo "--noise clean --mask-edge-px 2 --mask-edge-sign shrink" ;;
     masks_shrunk_1px) echo "--noise clean --mask-edge-px 1 --mask-edge-sign shrink" ;;
+    masks_thin_lost) echo "--noise clean --mask-edge-px 2 --mask-edge-sign shrink --mask-erosion-part thin" ;;
+    masks_outline_eroded) echo "--noise clean --mask-edge-px 2 --mask-edge-sign shrink --mask-erosion-part outline" ;;
     misses) echo "--noise clean --miss-rate 0.03" ;;
     false_clusters) echo "--noise clean --false-cluster-rate 0.03" ;;
     false_masks) echo "--noise clean --false-mask-rate 0.02" ;;

@@ -66,7 +66,23 @@ const char* toString(MaskEdgeSign sign) {
   return "both";
 }
 
-void perturbMaskEdges(cv::Mat& id_mask, int max_px, std::mt19937_64& rng, MaskEdgeSign sign) {
+MaskErosionPart maskErosionPartByName(const std::string& name) {
+  if (name == "all") return MaskErosionPart::kAll;
+  if (name == "thin") return MaskErosionPart::kThin;
+  if (name == "outline") return MaskErosionPart::kOutline;
+  throw std::invalid_argument("unknown mask erosion part '" + name + "' (use all, thin or outline)");
+}
+
+const char* toString(MaskErosionPart part) {
+  switch (part) {
+    case MaskErosionPart::kThin: return "thin";
+    case MaskErosionPart::kOutline: return "outline";
+    case MaskErosionPart::kAll: break;
+  }
+  return "all";
+}
+
+void perturbMaskEdges(cv::Mat& id_mask, int max_px, std::mt19937_64& rng, MaskEdgeSign sign, MaskErosionPart part) {
   if (max_px <= 0 || id_mask.empty()) return;
   cv::Mat ids32;
   id_mask.convertTo(ids32, CV_32S);
@@ -92,6 +108,13 @@ void perturbMaskEdges(cv::Mat& id_mask, int max_px, std::mt19937_64& rng, MaskEd
     } else {
       cv::Mat shrunk;
       cv::erode(region, shrunk, kernel);
+      if (part != MaskErosionPart::kAll) {
+        // The opening (the erosion dilated back within the person) is what keeps no thin part.
+        cv::Mat opened;
+        cv::dilate(shrunk, opened, kernel);
+        opened &= region;
+        shrunk = part == MaskErosionPart::kThin ? opened : (shrunk | (region & ~opened));
+      }
       out.setTo(0, region & ~shrunk);
     }
   }

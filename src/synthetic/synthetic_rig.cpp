@@ -339,7 +339,7 @@ void SyntheticRig::drawMask(const std::vector<WorldObject>& objects, const cv::M
   }
   const NoiseConfig& noise = config_.noise;
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  perturbMaskEdges(frame->mask, noise.mask_edge_px, rng, noise.mask_edge_sign);
+  perturbMaskEdges(frame->mask, noise.mask_edge_px, rng, noise.mask_edge_sign, noise.mask_erosion_part);
   if (unit(rng) < noise.false_mask_rate) addFalseMaskBlob(frame->mask, next_id, rng);
   const ColumnRange empty = emptyColumns();
   if (empty.end > empty.begin) {  // edge noise and false blobs stay out of the empty region too

@@ -113,6 +113,8 @@ std::string makeSyntheticBagUsage() {
       "  --range-noise-m X        LiDAR range noise sigma, m (overrides the preset)\n"
       "  --mask-edge-px N         random dilate/erode of each person mask by 0..N px\n"
       "  --mask-edge-sign S       both (default) | grow (dilate only) | shrink (erode only)\n"
+      "  --mask-erosion-part P    all (default) | thin (only the parts narrower than the erosion\n"
+      "                           are lost) | outline (eroded, those thin parts kept)\n"
       "  --miss-rate P            per person, per frame, per modality miss probability\n"
       "  --false-cluster-rate P   probability a post/bush in range is reported as a person cluster\n"
       "  --false-mask-rate P      per frame probability of a false person blob in the mask\n"
@@ -195,6 +197,8 @@ MakeSyntheticBagOptions parseMakeSyntheticBagOptions(const std::vector<std::stri
       o.mask_edge_px = static_cast<int>(parseInt(a, value(), 0, 20));
     } else if (a == "--mask-edge-sign") {
       o.mask_edge_sign = oneOf(a, value(), {"both", "grow", "shrink"});
+    } else if (a == "--mask-erosion-part") {
+      o.mask_erosion_part = oneOf(a, value(), {"all", "thin", "outline"});
     } else if (a == "--miss-rate") {
       o.miss_rate = parseDouble(a, value(), 0.0, 1.0);
     } else if (a == "--false-cluster-rate") {
@@ -258,6 +262,7 @@ syn::SyntheticConfig syntheticConfigFrom(const MakeSyntheticBagOptions& o) {
   if (o.range_noise_m >= 0) c.noise.range_sigma_m = o.range_noise_m;
   if (o.mask_edge_px >= 0) c.noise.mask_edge_px = o.mask_edge_px;
   c.noise.mask_edge_sign = syn::maskEdgeSignByName(o.mask_edge_sign);
+  c.noise.mask_erosion_part = syn::maskErosionPartByName(o.mask_erosion_part);
   if (o.miss_rate >= 0) c.noise.miss_rate = o.miss_rate;
   if (o.false_cluster_rate >= 0) c.noise.false_cluster_rate = o.false_cluster_rate;
   if (o.false_mask_rate >= 0) c.noise.false_mask_rate = o.false_mask_rate;

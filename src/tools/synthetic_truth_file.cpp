@@ -84,6 +84,7 @@ void writeSyntheticTruth(const MakeSyntheticBagOptions& o, const synthetic::Synt
   out << YAML::Key << "range_noise_m" << YAML::Value << c.noise.range_sigma_m;
   out << YAML::Key << "mask_edge_px" << YAML::Value << c.noise.mask_edge_px;
   out << YAML::Key << "mask_edge_sign" << YAML::Value << synthetic::toString(c.noise.mask_edge_sign);
+  out << YAML::Key << "mask_erosion_part" << YAML::Value << synthetic::toString(c.noise.mask_erosion_part);
   out << YAML::Key << "miss_rate" << YAML::Value << c.noise.miss_rate;
   out << YAML::Key << "false_cluster_rate" << YAML::Value << c.noise.false_cluster_rate;
   out << YAML::Key << "false_mask_rate" << YAML::Value << c.noise.false_mask_rate;

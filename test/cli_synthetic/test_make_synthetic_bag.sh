@@ -17,7 +17,7 @@ exit_code() { "$exe" "$@" >/dev/null 2>"$dir/err"; echo $?; }
 check "--help exits 0" "$exe" --help
 for bad in "" "--output $dir/x.bag --frames 0" "--output $dir/x.bag --rig kitti" \
            "--output $dir/x.bag --no-such-flag" "--output $dir/x.bag --miss-rate 2" "--output $dir/x.bag --seed" \
-           "--output $dir/x.bag --mask-edge-sign inward"; do
+           "--output $dir/x.bag --mask-edge-sign inward" "--output $dir/x.bag --mask-erosion-part legs"; do
   # shellcheck disable=SC2086
   code=$(exit_code $bad)
   check "bad arguments '$bad' exit 2 with one line" test "$code" = 2 -a "$(wc -l < "$dir/err")" = 1
@@ -80,6 +80,9 @@ check "custom frames in truth" grep -q "^camera_frame: cam" "$dir/b.yaml"
 check "the preset's mask edges move both ways" grep -q "^mask_edge_sign: both" "$dir/b.yaml"
 check "eroded masks only" "$exe" --output "$dir/s.bag" --truth "$dir/s.yaml" --frames 5 --mask-edge-px 2 --mask-edge-sign shrink
 check "the truth says which way the mask edges moved" grep -q "^mask_edge_sign: shrink" "$dir/s.yaml"
+check "the preset's erosion takes all" grep -q "^mask_erosion_part: all" "$dir/s.yaml"
+check "thin parts lost only" "$exe" --output "$dir/t.bag" --truth "$dir/t.yaml" --frames 5 --mask-edge-px 2 --mask-edge-sign shrink --mask-erosion-part thin
+check "the truth says what the erosion took" grep -q "^mask_erosion_part: thin" "$dir/t.yaml"
 
 # A bump 2 s into a 4 s drive: the truth keeps the start extrinsic at the top and adds the change.
 check "extrinsic change bag" "$exe" --output "$dir/d.bag" --frames 40 --seed 3 --extrinsic-change-at 2 --extrinsic-change 0.5,3

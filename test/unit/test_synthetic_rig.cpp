@@ -294,6 +294,39 @@ TEST(SyntheticRig, MaskEdgesMoveTheWayAsked) {
   EXPECT_THROW(syn::maskEdgeSignByName("inward"), std::invalid_argument);
 }
 
+// An erosion splits into the thin parts it loses and the outline it moves in (issue 24's two
+// opposite leans): the two parts take disjoint pixels that together are the erosion's.
+TEST(SyntheticRig, ErosionPartsSplitTheErosion) {
+  cv::Mat ids(80, 80, CV_8UC1, cv::Scalar(0));
+  ids(cv::Rect(20, 10, 30, 30)).setTo(1);  // a body
+  ids(cv::Rect(34, 40, 2, 25)).setTo(1);   // a leg 2 px wide: narrower than any erosion's kernel
+  const cv::Point edge(35, 10), leg(34, 55);  // the body's top edge, in the middle; a leg pixel
+  int eroded = 0;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    cv::Mat all = ids.clone(), thin = ids.clone(), outline = ids.clone();
+    std::mt19937_64 ra(seed), rt(seed), ro(seed);
+    syn::perturbMaskEdges(all, 2, ra, syn::MaskEdgeSign::kShrink, syn::MaskErosionPart::kAll);
+    syn::perturbMaskEdges(thin, 2, rt, syn::MaskEdgeSign::kShrink, syn::MaskErosionPart::kThin);
+    syn::perturbMaskEdges(outline, 2, ro, syn::MaskEdgeSign::kShrink, syn::MaskErosionPart::kOutline);
+    const cv::Mat lost_all = (ids != 0) & (all == 0), lost_thin = (ids != 0) & (thin == 0),
+                  lost_outline = (ids != 0) & (outline == 0);
+    EXPECT_EQ(cv::countNonZero(lost_thin & lost_outline), 0) << "seed " << seed;
+    EXPECT_EQ(cv::countNonZero((lost_thin | lost_outline) != lost_all), 0) << "seed " << seed;
+    if (all.at<std::uint8_t>(edge) != 0) continue;  // this seed drew no erosion
+    ++eroded;
+    EXPECT_EQ(all.at<std::uint8_t>(leg), 0);
+    EXPECT_EQ(thin.at<std::uint8_t>(leg), 0);          // the leg is lost...
+    EXPECT_NE(thin.at<std::uint8_t>(edge), 0);         // ...the body's outline stays
+    EXPECT_NE(outline.at<std::uint8_t>(leg), 0);       // the leg stays...
+    EXPECT_EQ(outline.at<std::uint8_t>(edge), 0);      // ...the outline moves in
+  }
+  EXPECT_GT(eroded, 0);
+  EXPECT_EQ(syn::maskErosionPartByName("thin"), syn::MaskErosionPart::kThin);
+  EXPECT_STREQ(syn::toString(syn::MaskErosionPart::kOutline), "outline");
+  EXPECT_STREQ(syn::toString(syn::MaskErosionPart::kAll), "all");
+  EXPECT_THROW(syn::maskErosionPartByName("legs"), std::invalid_argument);
+}
+
 TEST(SyntheticRig, PresetsAndBadConfigs) {
   EXPECT_THROW(syn::rigByName("kitti"), std::invalid_argument);
   EXPECT_THROW(syn::NoiseConfig::preset("noisy"), std::invalid_argument);

@@ -22,6 +22,7 @@ struct MakeSyntheticBagOptions {
   double range_noise_m = -1, miss_rate = -1, false_cluster_rate = -1, false_mask_rate = -1;
   int mask_edge_px = -1;
   std::string mask_edge_sign = "both";  // both | grow | shrink
+  std::string mask_erosion_part = "all";  // all | thin | outline
   std::string mask_style = "ids";        // ids | binary
   std::string image_encoding = "mono8";  // mono8 | mono16
   bool full_cloud = false;
