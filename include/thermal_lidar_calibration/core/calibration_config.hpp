@@ -130,6 +130,8 @@ struct VerticalCentringConfig {
   double max_mean_cost_px = 0.01;  // applied only when the points fit at least this well
   double pair_fit_px = 1e-4;       // a pair fits when its mean cost with the margin is <= this
                                    // at the plane's best pose (0: keep every pair)
+  bool consensus_start = true;     // that best pose: where the most pairs fit (vertical_centring.hpp);
+                                   // false: the minimum of the loss with the margin over all pairs
   double min_fitting_fraction = 0.25;  // applied only when at least this share of the pairs fit
   double tolerance = 0.02;         // region: loss <= best * (1 + tolerance) + 1e-5 px
   double outlying_fraction = 0.02; // region instead: at most this share of the fitting pairs
