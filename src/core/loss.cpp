@@ -89,6 +89,9 @@ struct RingEndPoints {
   std::vector<float> x, y, z;
   RingEndPoints() = default;
   RingEndPoints(const PackedRingEnds& ends, const PreparedPair& pair) {
+    x.reserve(ends.point.size());
+    y.reserve(ends.point.size());
+    z.reserve(ends.point.size());
     for (const std::int32_t k : ends.point) {
       x.push_back(pair.x[static_cast<std::size_t>(k)]);
       y.push_back(pair.y[static_cast<std::size_t>(k)]);
@@ -122,30 +125,33 @@ PreparedPair::PreparedPair(const CalibrationPair& pair, std::optional<double> ti
     return;
   }
   const std::vector<Eigen::Vector3f> base = pointsAtImageTime(pair, 0.0);
-  base_x.resize(count);
-  base_y.resize(count);
-  base_z.resize(count);
-  vx.resize(count);
-  vy.resize(count);
-  vz.resize(count);
+  auto m = std::make_shared<Motion>();
+  m->base_x.resize(count);
+  m->base_y.resize(count);
+  m->base_z.resize(count);
+  m->vx.resize(count);
+  m->vy.resize(count);
+  m->vz.resize(count);
   for (std::size_t i = 0; i < count; ++i) {
-    base_x[i] = base[i].x();
-    base_y[i] = base[i].y();
-    base_z[i] = base[i].z();
-    vx[i] = pair.point_velocity[i].x();
-    vy[i] = pair.point_velocity[i].y();
-    vz[i] = pair.point_velocity[i].z();
+    m->base_x[i] = base[i].x();
+    m->base_y[i] = base[i].y();
+    m->base_z[i] = base[i].z();
+    m->vx[i] = pair.point_velocity[i].x();
+    m->vy[i] = pair.point_velocity[i].y();
+    m->vz[i] = pair.point_velocity[i].z();
   }
+  motion = std::move(m);
   moveTo(*time_offset_s);
 }
 
 void PreparedPair::moveTo(double time_offset_s) {
-  if (base_x.empty()) return;  // no motion: the points stay where they were captured
+  if (!motion) return;  // no motion: the points stay where they were captured
+  const Motion& m = *motion;
   const float d = static_cast<float>(time_offset_s);
   for (std::size_t i = 0; i < count; ++i) {
-    x[i] = base_x[i] + d * vx[i];
-    y[i] = base_y[i] + d * vy[i];
-    z[i] = base_z[i] + d * vz[i];
+    x[i] = m.base_x[i] + d * m.vx[i];
+    y[i] = m.base_y[i] + d * m.vy[i];
+    z[i] = m.base_z[i] + d * m.vz[i];
   }
   bound();
 }
@@ -172,8 +178,9 @@ struct LossEvaluator::Impl {
   std::vector<RingEndPoints> ring_points;
   mutable std::atomic<std::uint64_t> points{0};
 
-  // The same pairs (points copied, distance maps shared), lens and ring ends; its own count.
-  std::shared_ptr<Impl> copy() const {
+  // The same pairs (points copied, distance maps and motion shared), lens and ring ends; its own
+  // count. Without `ring_points_too` the ends' points are left for placeRingEnds to take.
+  std::shared_ptr<Impl> copy(bool ring_points_too = true) const {
     auto out = std::make_shared<Impl>();
     out->pairs = pairs;
     out->lens = lens;
@@ -181,7 +188,7 @@ struct LossEvaluator::Impl {
     out->penalty = penalty;
     out->K = K;
     out->ring_ends = ring_ends;
-    out->ring_points = ring_points;
+    if (ring_points_too) out->ring_points = ring_points;
     return out;
   }
 
@@ -288,15 +295,15 @@ LossEvaluator LossEvaluator::withTimeOffset(double time_offset_s) const {
   if (!config_.time_offset_s) throw std::logic_error("loss: withTimeOffset on an evaluator without a time offset");
   LossConfig config = config_;
   config.time_offset_s = time_offset_s;
-  auto impl = impl_->copy();
+  auto impl = impl_->copy(false);
   for (PreparedPair& pair : impl->pairs) pair.moveTo(time_offset_s);
-  if (impl->ring_ends) impl->placeRingEnds();
+  impl->placeRingEnds();
   return LossEvaluator(camera_, config, impl);
 }
 
 bool LossEvaluator::hasMotion() const {
   for (const PreparedPair& p : impl_->pairs) {
-    if (!p.base_x.empty()) return true;
+    if (p.motion) return true;
   }
   return false;
 }

@@ -67,8 +67,12 @@ struct PreparedPair {
   std::shared_ptr<const DistanceMap> distance;  // shared by the evaluators of other offsets
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // bounding sphere of the points
   double radius = 0.0;
-  // With motion: the points at the image stamp (delta = 0) and their velocities, unpadded.
-  std::vector<float> base_x, base_y, base_z, vx, vy, vz;
+  // With motion: the points at the image stamp (delta = 0) and their velocities, unpadded; null
+  // without. Shared by the evaluators of other offsets, which only move x, y, z.
+  struct Motion {
+    std::vector<float> base_x, base_y, base_z, vx, vy, vz;
+  };
+  std::shared_ptr<const Motion> motion;
   PreparedPair(const CalibrationPair& pair, std::optional<double> time_offset_s);
   void moveTo(double time_offset_s);  // x, y, z, centre, radius at another delta
  private:
