@@ -179,8 +179,9 @@ struct LossEvaluator::Impl {
   mutable std::atomic<std::uint64_t> points{0};
 
   // The same pairs (points copied, distance maps and motion shared), lens and ring ends; its own
-  // count. Without `ring_points_too` the ends' points are left for placeRingEnds to take.
-  std::shared_ptr<Impl> copy(bool ring_points_too = true) const {
+  // count. Not the ends' points: every copy moves the points or changes the ends, then takes
+  // them again (placeRingEnds).
+  std::shared_ptr<Impl> copy() const {
     auto out = std::make_shared<Impl>();
     out->pairs = pairs;
     out->lens = lens;
@@ -188,7 +189,6 @@ struct LossEvaluator::Impl {
     out->penalty = penalty;
     out->K = K;
     out->ring_ends = ring_ends;
-    if (ring_points_too) out->ring_points = ring_points;
     return out;
   }
 
@@ -295,7 +295,7 @@ LossEvaluator LossEvaluator::withTimeOffset(double time_offset_s) const {
   if (!config_.time_offset_s) throw std::logic_error("loss: withTimeOffset on an evaluator without a time offset");
   LossConfig config = config_;
   config.time_offset_s = time_offset_s;
-  auto impl = impl_->copy(false);
+  auto impl = impl_->copy();
   for (PreparedPair& pair : impl->pairs) pair.moveTo(time_offset_s);
   impl->placeRingEnds();
   return LossEvaluator(camera_, config, impl);
