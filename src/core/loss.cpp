@@ -192,6 +192,26 @@ struct LossEvaluator::Impl {
     return out;
   }
 
+  // Pairs `keep` only, in that order, with their ring ends and the ends' points.
+  std::shared_ptr<Impl> ofPairs(const std::vector<std::size_t>& keep) const {
+    auto out = std::make_shared<Impl>();
+    out->lens = lens;
+    out->distorted = distorted;
+    out->penalty = penalty;
+    out->K = K;
+    out->pairs.reserve(keep.size());
+    for (std::size_t i : keep) out->pairs.push_back(pairs[i]);
+    if (ring_ends) {
+      auto ends = std::make_shared<std::vector<PackedRingEnds>>();
+      ends->reserve(keep.size());
+      for (std::size_t i : keep) ends->push_back((*ring_ends)[i]);
+      out->ring_ends = std::move(ends);
+      out->ring_points.reserve(keep.size());
+      for (std::size_t i : keep) out->ring_points.push_back(ring_points[i]);
+    }
+    return out;
+  }
+
   // Fold K into [R | t] when there is no distortion: one mat-vec and one reciprocal per point.
   Params paramsOf(const Extrinsic& e) const { return paramsOf(e.rotationMatrix(), e.translation); }
   Params paramsOf(const Eigen::Matrix3d& R, const Eigen::Vector3d& t) const {
@@ -299,6 +319,16 @@ LossEvaluator LossEvaluator::withTimeOffset(double time_offset_s) const {
   for (PreparedPair& pair : impl->pairs) pair.moveTo(time_offset_s);
   impl->placeRingEnds();
   return LossEvaluator(camera_, config, impl);
+}
+
+LossEvaluator LossEvaluator::ofPairs(const std::vector<std::size_t>& pairs) const {
+  for (std::size_t i : pairs) {
+    if (i >= impl_->pairs.size()) {
+      throw std::invalid_argument("loss: ofPairs: pair " + std::to_string(i) + " of " +
+                                  std::to_string(impl_->pairs.size()));
+    }
+  }
+  return LossEvaluator(camera_, config_, impl_->ofPairs(pairs));
 }
 
 bool LossEvaluator::hasMotion() const {

@@ -180,7 +180,24 @@ Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& esti
   // and would end where it started, an interval of zero. The centres' rule has its minimum a
   // little apart (the lean the outline takes out), so each resample's deviation is taken from
   // that rule's fit on all the pairs, not from the estimate.
-  const LossEvaluator bilinear = loss.withPixelRule(PixelRule::kBilinear).withOutline(0.0);
+  //
+  // The resamples read only the pairs they draw from: an evaluator over those alone (its pair k is
+  // pairs[k]), so an offset a timed resample visits moves these points, not those of every pair
+  // the fit had (a fourth of them on a drive with the final round). Each pair reads the same, so
+  // the fits are those over the original indices.
+  const LossEvaluator bilinear = loss.ofPairs(pairs).withPixelRule(PixelRule::kBilinear).withOutline(0.0);
+  std::vector<std::size_t> local(pairs.size());
+  std::iota(local.begin(), local.end(), std::size_t{0});
+  std::optional<VerticalCentringOutcome> local_centring;
+  if (centring) {
+    local_centring = *centring;
+    local_centring->fitting.clear();
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      if (std::binary_search(centring->fitting.begin(), centring->fitting.end(), pairs[k])) {
+        local_centring->fitting.push_back(k);
+      }
+    }
+  }
   const RefineConfig refine = resampleRefineConfig(config);
   // One thread per resample: a resample's refinement evaluates 12 probes at a time, too few to
   // share well, while the resamples are independent.
@@ -215,16 +232,16 @@ Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& esti
       f.pose = out.best;
       f.evaluations = out.evaluations;
     }
-    if (centring) {
+    if (local_centring) {
       const VerticalCentringOutcome centred =
-          timed ? centreResample(bilinear.withTimeOffset(f.offset_s), f.pose, set, *centring, 1)
-                : centreResample(bilinear, f.pose, set, *centring, 1);
+          timed ? centreResample(bilinear.withTimeOffset(f.offset_s), f.pose, set, *local_centring, 1)
+                : centreResample(bilinear, f.pose, set, *local_centring, 1);
       f.pose = centred.extrinsic;
       f.evaluations += centred.evaluations;
     }
     return f;
   };
-  const Fit reference = fit(pairs);
+  const Fit reference = fit(local);
 
   const int total = config.resamples;
   std::vector<Vector6d> deviations(static_cast<std::size_t>(total));
@@ -239,7 +256,7 @@ Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& esti
     if (stop.load()) continue;
     const std::size_t k = static_cast<std::size_t>(b);
     const std::vector<std::size_t> resample =
-        resamplePairs(pairs, config.block_pairs, config.seed, b);
+        resamplePairs(local, config.block_pairs, config.seed, b);
     const Fit f = fit(resample);
     offset_deviations[k] = 1000.0 * (f.offset_s - reference.offset_s);
     evaluations[k] = f.evaluations;

@@ -17,6 +17,7 @@
 
 #include <cmath>
 #include <numeric>
+#include <set>
 
 using namespace thermal_lidar_calibration;
 
@@ -439,4 +440,41 @@ TEST(RingEnds, TheDefaultRunReadsThemAndThePaperModeDoesNot) {
   config.refine.ring_end_weight = 1.0;
   config.refine.mode = RefineMode::kNone;
   EXPECT_EQ(calibrate(camera, pairs, config).ring_ends, 0u) << "the paper's method alone";
+}
+
+TEST(RingEnds, AnEvaluatorOverSomePairsReadsEachAsTheWholeDoes) {
+  // The bootstrap reads its pairs through an evaluator over them alone (LossEvaluator::ofPairs):
+  // every pair, its motion and its ring ends must read exactly as in the evaluator it came from,
+  // at the offset it had and at any other.
+  const CameraModel camera = test_support::fieldsafeCamera(false);
+  std::vector<CalibrationPair> pairs = boardPairs(camera, 3, 1);
+  for (CalibrationPair& pair : pairs) {
+    pair.cloud_stamp_s = pair.stamp_s;
+    std::vector<PersonMotion> motion;
+    for (const std::int32_t label : std::set<std::int32_t>(pair.labels.begin(), pair.labels.end())) {
+      PersonMotion m;
+      m.label = label;
+      m.velocity_mps = Eigen::Vector3d(-2.0, 0.3 * label, 0.0);
+      m.scans = 5;
+      motion.push_back(m);
+    }
+    attachMotion(pair, motion);
+  }
+  const LossEvaluator plain(camera, pairs, LossConfig{5.0, PixelRule::kBilinear, 0.05});
+  ASSERT_TRUE(plain.hasMotion());
+  const LossEvaluator whole = plain.withRingEnds(pairs, lidarToCamera(), 1.0);
+  ASSERT_GT(whole.ringEndCount(), 0u);
+  const std::vector<std::size_t> picked = {17, 2, 2, 39, 0};
+  const LossEvaluator part = whole.ofPairs(picked);
+  ASSERT_EQ(part.pairCount(), picked.size());
+  const std::vector<std::size_t> local = {0, 1, 2, 3, 4};
+  Extrinsic off = lidarToCamera();
+  off.translation.x() += 0.03;
+  for (const Extrinsic& e : {lidarToCamera(), off}) {
+    EXPECT_EQ(part.loss(e, local), whole.loss(e, picked));
+    EXPECT_EQ(part.withTimeOffset(0.02).loss(e, {3, 1}), whole.withTimeOffset(0.02).loss(e, {39, 2}));
+    for (std::size_t k = 0; k < picked.size(); ++k) EXPECT_EQ(part.pairLoss(k, e), whole.pairLoss(picked[k], e));
+  }
+  EXPECT_EQ(part.centroid(local), whole.centroid(picked));
+  EXPECT_THROW(whole.ofPairs({pairs.size()}), std::invalid_argument);
 }

@@ -5,10 +5,12 @@
 
 #include <numeric>
 
+#include "../support/moving_pairs.hpp"
 #include "../support/synthetic_pairs.hpp"
 #include "thermal_lidar_calibration/core/local_refinement.hpp"
 #include "thermal_lidar_calibration/core/pose_difference.hpp"
 #include "thermal_lidar_calibration/core/uncertainty.hpp"
+#include "thermal_lidar_calibration/core/vertical_centring.hpp"
 
 using namespace thermal_lidar_calibration;
 using test_support::fieldsafeCamera;
@@ -74,6 +76,39 @@ TEST(Uncertainty, SameSeedSameIntervalsWhateverTheThreadCount) {
   config.seed = 2;
   const Uncertainty other = estimateUncertainty(loss, estimate, all(data.size()), config);
   EXPECT_NE(one.deviations[0], other.deviations[0]) << "another seed draws other resamples";
+}
+
+TEST(Uncertainty, ResamplesOfSomePairsAreThoseOfThesePairsAlone) {
+  // The bootstrap draws from some of the evaluator's pairs (the spaced ones) and reads them
+  // through an evaluator over those alone: the timed resamples, and the centring with the pairs
+  // that fit, must come out as from an evaluator built on those pairs only.
+  auto data = pairs(30, 5);
+  test_support::addMotion(data, test_support::MotionOptions{});
+  const std::vector<std::size_t> picked = {1, 4, 5, 9, 12, 13, 17, 20, 22, 23, 26, 29};
+  std::vector<CalibrationPair> alone;
+  for (std::size_t i : picked) alone.push_back(data[i]);
+  const LossConfig timed{5.0, PixelRule::kBilinear, 0.06};
+  const LossEvaluator whole(fieldsafeCamera(), data, timed);
+  const LossEvaluator own(fieldsafeCamera(), alone, timed);
+  const Extrinsic estimate = estimateOn(own, alone.size());
+  VerticalCentringConfig centring;
+  const VerticalCentringOutcome centred_whole = centreVertically(whole, estimate, picked, centring, 1);
+  const VerticalCentringOutcome centred_own = centreVertically(own, estimate, all(alone.size()), centring, 1);
+  ASSERT_TRUE(centred_whole.applied) << centred_whole.skipped_because;
+  ASSERT_EQ(centred_whole.fitting.size(), centred_own.fitting.size());
+  UncertaintyConfig config = UncertaintyConfig::quick();
+  config.resamples = 6;
+  config.num_threads = 1;
+  const Uncertainty a = estimateUncertainty(whole, centred_whole.extrinsic, picked, config, {}, TimeOffsetConfig{},
+                                            &centred_whole);
+  const Uncertainty b = estimateUncertainty(own, centred_own.extrinsic, all(alone.size()), config, {},
+                                            TimeOffsetConfig{}, &centred_own);
+  ASSERT_EQ(a.resamples, 6);
+  ASSERT_EQ(b.resamples, 6);
+  for (int k = 0; k < 6; ++k) {
+    EXPECT_EQ(a.deviations[k], b.deviations[k]) << "resample " << k;
+    EXPECT_EQ(a.time_offset_deviations_ms[k], b.time_offset_deviations_ms[k]) << "resample " << k;
+  }
 }
 
 TEST(Uncertainty, IntervalsShrinkFrom20To60Pairs) {

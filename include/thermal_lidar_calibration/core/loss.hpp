@@ -93,6 +93,12 @@ class LossEvaluator {
   // The same pairs with their points moved to another camera time offset (shares the distance
   // maps; copies and moves the points). Throws std::logic_error without a time offset.
   LossEvaluator withTimeOffset(double time_offset_s) const;
+  // An evaluator over `pairs` only (indices into this one, duplicates allowed): its pair k is
+  // pair pairs[k] as prepared here, with its points, motion and ring ends. Each pair reads the
+  // same, so a sum over local indices equals the sum over the pairs they stand for; a copy at
+  // another time offset then moves only these. Throws std::invalid_argument on an index past
+  // pairCount().
+  LossEvaluator ofPairs(const std::vector<std::size_t>& pairs) const;
   // Whether some pair has measured motion (a time offset then moves points).
   bool hasMotion() const;
   // The same with another LossConfig::margin_px (shares the prepared data).
