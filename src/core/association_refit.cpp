@@ -132,6 +132,20 @@ void carryOver(const CalibrationResult& first, CalibrationResult& refit) {
   refit.history = std::move(history);
 }
 
+// Issue 21: a refit from a fit that estimated the time offset searches near that estimate only
+// (OffsetSearchReach::kNearStart) and keeps that fit's profile over the whole range.
+OffsetSearchReach reachAfter(const CalibrationResult& before) {
+  return before.time_offset_mode == TimeOffsetMode::kEstimate ? OffsetSearchReach::kNearStart
+                                                              : OffsetSearchReach::kWholeRange;
+}
+
+void carryProfile(const CalibrationResult& before, CalibrationResult& refit) {
+  if (!refit.time_offset_profile_s.empty()) return;
+  refit.time_offset_profile_s = before.time_offset_profile_s;
+  refit.time_offset_profile_loss = before.time_offset_profile_loss;
+  refit.time_offset_profile_pairs = before.time_offset_profile_pairs;
+}
+
 // The ring alias check of every fit so far counts in `refit`'s report (a turn kept in an earlier
 // fit moved the start of this one): the starts add up, the turn and the spacing are the latest
 // fit's that has one (the final round refines without the check and keeps the rounds').
@@ -172,11 +186,12 @@ void finalRound(const CameraModel& camera, const std::vector<CalibrationPair>& c
   CalibrationConfig final_config = config;
   final_config.refine.ring_alias_turns = 0;
   CalibrationResult refit = refineFrom(camera, enlarged, final_config, out.result.extrinsic,
-                                       out.result.time_offset_s, progress);
+                                       out.result.time_offset_s, progress, reachAfter(out.result));
   out.final_round_evaluations = refit.evaluations;
   out.final_round_points = refit.points_projected;
   carryOver(first, refit);
   addRingAliasReport(out.result, refit);
+  carryProfile(out.result, refit);
   out.result = std::move(refit);
   out.pairs = std::move(enlarged);
   out.association_pairs = associated.size();
@@ -293,11 +308,12 @@ AssociatedCalibration calibrateWithAssociation(const CameraModel& camera, std::v
     }
     std::vector<CalibrationPair> enlarged = merged(counts, associated);
     CalibrationResult refit = refineFrom(camera, enlarged, config, out.result.extrinsic,
-                                         out.result.time_offset_s, progress);
+                                         out.result.time_offset_s, progress, reachAfter(out.result));
     evaluations += refit.evaluations;
     points += refit.points_projected;
     carryOver(first, refit);
     addRingAliasReport(out.result, refit);
+    carryProfile(out.result, refit);
     out.result = std::move(refit);
     out.pairs = std::move(enlarged);
     out.association_pairs = associated.size();

@@ -171,18 +171,25 @@ bool resolvable(const LossEvaluator& nearest, const std::vector<CalibrationPair>
   return false;
 }
 
+// The profile of a search over the whole range is the result's; a search near the start leaves
+// the profile the caller carries (the earlier fit's, calibrateWithAssociation).
 void searchOffset(const LossEvaluator& bilinear, const CalibrationConfig& config,
-                  const std::vector<std::size_t>& used, Reporter& report, CalibrationResult& result) {
+                  const std::vector<std::size_t>& used, OffsetSearchReach reach, Reporter& report,
+                  CalibrationResult& result) {
   report.evaluations_before_stage = result.evaluations;
   const TimeOffsetProfile profile = searchTimeOffset(
       bilinear, result.extrinsic, used, config.time_offset, config.refine, config.num_threads,
       [&](int done, int total, double best) {
         return report("time_offset_search", done, total, best, result.extrinsic, 0);
-      });
+      },
+      reach);
   result.evaluations += profile.evaluations;
   result.stopped = profile.stopped;
-  result.time_offset_profile_s = profile.offsets_s;
-  result.time_offset_profile_loss = profile.losses;
+  if (reach == OffsetSearchReach::kWholeRange) {
+    result.time_offset_profile_s = profile.offsets_s;
+    result.time_offset_profile_loss = profile.losses;
+    result.time_offset_profile_pairs = used.size();
+  }
   result.extrinsic = profile.poses[profile.best];
   result.time_offset_s = profile.offsets_s[profile.best];
 }
@@ -296,8 +303,8 @@ bool leaveRingAlias(const LossEvaluator& nearest, const std::vector<CalibrationP
 // joint refinement. Pairs with people cut by the image border are left out of the re-selection
 // (refine.exclude_truncated). Returns the pairs used.
 std::vector<std::size_t> refine(const LossEvaluator& paper, const std::vector<CalibrationPair>& pairs,
-                                const CalibrationConfig& config, std::vector<std::size_t> used, Reporter& report,
-                                CalibrationResult& result) {
+                                const CalibrationConfig& config, std::vector<std::size_t> used,
+                                OffsetSearchReach reach, Reporter& report, CalibrationResult& result) {
   // Beyond the paper (issue 24, ring_ends.hpp): the sub-pixel readings also charge where each
   // ring leaves its person, against the person's own region where the pose found so far projects
   // it (the nearest-pixel readings, and so the inlier selection, are the paper's).
@@ -322,7 +329,7 @@ std::vector<std::size_t> refine(const LossEvaluator& paper, const std::vector<Ca
     const Extrinsic pose_only = result.extrinsic;
     const double start_s = result.time_offset_s;
     const std::vector<std::size_t> pose_only_used = used;
-    searchOffset(nearest.withPixelRule(PixelRule::kBilinear), config, used, report, result);
+    searchOffset(nearest.withPixelRule(PixelRule::kBilinear), config, used, reach, report, result);
     if (!result.stopped) used = refineRounds(nearest, config, candidates, std::move(used), true, report, result);
     if (!result.stopped) keepStartWhenNotTold(config, start_s, pose_only, pose_only_used, used, result);
   }
@@ -396,7 +403,7 @@ std::vector<std::size_t> fit(const EvolutionConfig& evolution, const LossEvaluat
                              Reporter& report, CalibrationResult& result) {
   std::vector<std::size_t> used = evolve(evolution, nearest, config, rng, report, result);
   if (config.refine.mode == RefineMode::kLocal && !result.stopped) {
-    used = refine(nearest, pairs, config, std::move(used), report, result);
+    used = refine(nearest, pairs, config, std::move(used), OffsetSearchReach::kWholeRange, report, result);
     if (!result.stopped && config.vertical_centring.enabled) centre(nearest, config, used, result);
   }
   return used;
@@ -453,7 +460,7 @@ CalibrationResult calibrate(const CameraModel& camera, const std::vector<Calibra
 
 CalibrationResult refineFrom(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
                              const CalibrationConfig& config, const Extrinsic& start, double start_time_offset_s,
-                             const ProgressCallback& progress) {
+                             const ProgressCallback& progress, OffsetSearchReach reach) {
   const auto started = std::chrono::steady_clock::now();
   config.validate();
   if (pairs.empty()) throw std::invalid_argument("calibration: no pairs were collected");
@@ -477,7 +484,7 @@ CalibrationResult refineFrom(const CameraModel& camera, const std::vector<Calibr
   const std::vector<std::size_t> candidates = refinementCandidates(nearest, from.refine.exclude_truncated);
   std::vector<std::size_t> used = selectInliers(nearest, start, from.outlier.threshold_px, candidates);
   result.evolution_loss = nearest.loss(start, used);
-  used = refine(nearest, pairs, from, std::move(used), report, result);
+  used = refine(nearest, pairs, from, std::move(used), reach, report, result);
   if (!result.stopped && from.vertical_centring.enabled) centre(nearest, from, used, result);
   finish(camera, pairs, from, nearest, timing, used, started, result);
   return result;

@@ -27,7 +27,7 @@ RefineConfig coarseRefine(const RefineConfig& refine) {
 TimeOffsetProfile searchTimeOffset(const LossEvaluator& loss, const Extrinsic& start,
                                    const std::vector<std::size_t>& pairs,
                                    const TimeOffsetConfig& timing, const RefineConfig& refine,
-                                   int threads, const ProfileCallback& callback) {
+                                   int threads, const ProfileCallback& callback, OffsetSearchReach reach) {
   timing.validate();
   refine.validate();
   if (!loss.config().time_offset_s) {
@@ -72,21 +72,37 @@ TimeOffsetProfile searchTimeOffset(const LossEvaluator& loss, const Extrinsic& s
       i = up ? i + next_step : i - next_step;
     }
   };
+  const auto lowest = [&] {
+    return static_cast<std::size_t>(std::min_element(profile.losses.begin(), profile.losses.end()) -
+                                    profile.losses.begin());
+  };
+  refineAt(origin, start);
+  if (reach == OffsetSearchReach::kNearStart) {
+    // Upwards while the loss falls; downwards only when the first step up did not fall. The first
+    // step each way is refined from the start's pose, as the whole range's fine walk does.
+    for (const int direction : {+1, -1}) {
+      std::size_t i = origin;
+      while (!profile.stopped && (direction > 0 ? i + 1 < n : i > 0)) {
+        const std::size_t next = direction > 0 ? i + 1 : i - 1;
+        refineAt(next, profile.poses[i]);
+        if (!(profile.losses[next] < profile.losses[i])) break;
+        i = next;
+      }
+      if (i != origin) break;
+    }
+    profile.best = profile.stopped ? origin : lowest();
+    return profile;
+  }
   // Coarse to fine: every kStride-th grid point outwards from the start, then every point within
   // kStride of the best of those. The profile is smooth over this scale (the pose follows the
   // offset), so the best coarse point's neighbourhood holds the minimum.
   constexpr std::size_t kStride = 4;
-  refineAt(origin, start);
   walk(origin, n - 1, kStride);
   walk(origin, 0, kStride);
   if (profile.stopped) {
     profile.best = origin;
     return profile;
   }
-  const auto lowest = [&] {
-    return static_cast<std::size_t>(std::min_element(profile.losses.begin(), profile.losses.end()) -
-                                    profile.losses.begin());
-  };
   const std::size_t coarse_best = lowest();
   walk(coarse_best, std::min(n - 1, coarse_best + kStride), 1);
   walk(coarse_best, coarse_best >= kStride ? coarse_best - kStride : 0, 1);

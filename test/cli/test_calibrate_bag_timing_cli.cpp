@@ -57,6 +57,10 @@ TEST_F(CalibrateBagTimingCli, TheDefaultRunEstimatesTheOffsetWithTheExtrinsic) {
   EXPECT_GT(y["loss_without_timing"].as<double>(), 3.0 * y["loss"].as<double>());
   ASSERT_TRUE(y["time_offset_profile"]);
   EXPECT_EQ(y["time_offset_profile"]["offsets_s"].size(), y["time_offset_profile"]["losses_px"].size());
+  // Searched over the whole range (+-200 ms) by the first fit, on the count rule's pairs it used.
+  EXPECT_GE(y["time_offset_profile"]["offsets_s"].size(), 15u);
+  EXPECT_GT(y["time_offset_profile"]["pairs"].as<int>(), 0);
+  EXPECT_LE(y["time_offset_profile"]["pairs"].as<int>(), y["pairs_by_rule"]["counts"].as<int>());
   EXPECT_LT(y["timing"]["resolution_ms"].as<double>(), 5.0);
   EXPECT_LT(truthOf(y)["rotation_error_deg"].as<double>(), 0.1);
   EXPECT_LT(truthOf(y)["translation_error_m"].as<double>(), 0.03);

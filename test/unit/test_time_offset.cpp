@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace thermal_lidar_calibration;
@@ -272,4 +273,29 @@ TEST(TimeOffset, TheJointRefinementStaysWithinTheRange) {
   const TimedRefineOutcome r = TimedRefinement(loss, RefineConfig{}, timing, 1).run(fieldsafeTruth(), 0.0, all);
   EXPECT_LE(std::abs(r.time_offset_s), 0.03 + 1e-12);
   EXPECT_GT(r.time_offset_s, 0.02);  // pushed to the edge nearest the truth
+}
+
+TEST(TimeOffset, ASearchNearTheStartFindsTheWholeRangesMinimumForLess) {
+  // The association rounds start where an earlier fit's estimate ended: walking the grid downhill
+  // from there finds the grid point the whole range finds, with the same pose when the start is
+  // that point, and from two steps away it walks there.
+  const auto pairs = movingPairs(0.06, false, 20);
+  std::vector<std::size_t> all(pairs.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  TimeOffsetConfig timing;
+  for (const double start : {0.06, 0.04}) {
+    const LossEvaluator loss(fieldsafeCamera(), pairs, LossConfig{5.0, PixelRule::kBilinear, start});
+    const TimeOffsetProfile whole = searchTimeOffset(loss, fieldsafeTruth(), all, timing, RefineConfig{}, 1);
+    const TimeOffsetProfile near =
+        searchTimeOffset(loss, fieldsafeTruth(), all, timing, RefineConfig{}, 1, {}, OffsetSearchReach::kNearStart);
+    EXPECT_NEAR(whole.offsets_s[whole.best], 0.06, 1e-9) << start;
+    EXPECT_NEAR(near.offsets_s[near.best], 0.06, 1e-9) << start;
+    EXPECT_LT(near.evaluations, whole.evaluations / 2) << start;
+    const long visited = std::count_if(near.losses.begin(), near.losses.end(), [](double v) { return std::isfinite(v); });
+    EXPECT_EQ(visited, start == 0.06 ? 3 : 4) << start;  // the start, the steps down, one step up
+    if (start == 0.06) {
+      EXPECT_EQ(near.poses[near.best].rotation_vector, whole.poses[whole.best].rotation_vector);
+      EXPECT_EQ(near.poses[near.best].translation, whole.poses[whole.best].translation);
+    }
+  }
 }

@@ -6,6 +6,7 @@
 #include "thermal_lidar_calibration/core/calibration_pair.hpp"
 #include "thermal_lidar_calibration/core/camera_model.hpp"
 #include "thermal_lidar_calibration/core/extrinsic.hpp"
+#include "thermal_lidar_calibration/core/time_offset_search.hpp"
 #include "thermal_lidar_calibration/core/vertical_centring.hpp"
 
 #include <cstdint>
@@ -82,9 +83,12 @@ struct CalibrationResult {
   double time_offset_s = 0.0;       // estimated or fixed; 0 when none was applied
   std::string time_offset_note;     // why the applied mode differs from the one asked for
   std::size_t pairs_with_motion = 0;  // pairs whose people's motion was measured
-  // The coarse search (mode estimate): each grid offset and the loss after refining the pose
-  // there (bilinear rule, on the pairs then used).
+  // The coarse search over the whole range (mode estimate): each grid offset and the loss after
+  // refining the pose there (bilinear rule), on the time_offset_profile_pairs pairs then used (with
+  // association, those of the first fit that searched the whole range: the later rounds search
+  // near its estimate).
   std::vector<double> time_offset_profile_s, time_offset_profile_loss;
+  std::size_t time_offset_profile_pairs = 0;
   // The loss with the points where they were captured (no time offset), to show what timing
   // changed; equal to `loss` with time_offset_mode none.
   double loss_without_timing = 0.0;
@@ -102,9 +106,13 @@ CalibrationResult calibrate(const CameraModel& camera, const std::vector<Calibra
 // threshold_sample_px of `start` (at least the better half). The result's evolution_* fields
 // hold the start. An estimate not told from the start is kept at the start only when that is the
 // config's time_offset_s (time_offset.keep_start_sigmas), not when a later round starts where an
-// earlier one's estimate ended. Throws std::invalid_argument as calibrate() does, and for refine none.
+// earlier one's estimate ended. `reach`: how far the coarse search over the offset looks
+// (time_offset_search.hpp); with kNearStart the result has no profile of its own (the caller
+// keeps the one of the fit that searched the whole range). Throws std::invalid_argument as
+// calibrate() does, and for refine none.
 CalibrationResult refineFrom(const CameraModel& camera, const std::vector<CalibrationPair>& pairs,
                              const CalibrationConfig& config, const Extrinsic& start, double start_time_offset_s,
-                             const ProgressCallback& progress = {});
+                             const ProgressCallback& progress = {},
+                             OffsetSearchReach reach = OffsetSearchReach::kWholeRange);
 
 }  // namespace thermal_lidar_calibration

@@ -124,7 +124,7 @@ void emitTiming(YAML::Emitter& out, const CalibrationResult& result) {
     for (double loss : result.time_offset_profile_loss) {
       if (std::isfinite(loss)) out << loss;
     }
-    out << YAML::EndSeq << YAML::EndMap;
+    out << YAML::EndSeq << YAML::Key << "pairs" << YAML::Value << result.time_offset_profile_pairs << YAML::EndMap;
   }
 }
 

@@ -171,7 +171,9 @@ std::vector<std::string> writeCalibrationReport(const std::string& dir, const Re
   if (uncertainty) html += "<h2>Uncertainty per axis</h2>\n<img src=\"uncertainty.png\">\n";
   if (profile) {
     html += "<h2>Camera time offset</h2>\n<p>The loss with the pose refined at each offset of the coarse "
-            "search; a clear dip is a drive that tells the offset, a flat floor one that does not. The "
+            "search over the whole range, on the " + std::to_string(in.result->time_offset_profile_pairs) +
+            " pairs of the fit that ran it (with association, the first fit: the later rounds search near "
+            "its estimate); a clear dip is a drive that tells the offset, a flat floor one that does not. The "
             "overlays above show the people where they were at each image's instant.</p>\n"
             "<img src=\"time_offset.png\">\n";
   }
