@@ -182,23 +182,15 @@ struct LossEvaluator::Impl {
   // count. Not the ends' points: every copy moves the points or changes the ends, then takes
   // them again (placeRingEnds).
   std::shared_ptr<Impl> copy() const {
-    auto out = std::make_shared<Impl>();
+    auto out = sameCamera();
     out->pairs = pairs;
-    out->lens = lens;
-    out->distorted = distorted;
-    out->penalty = penalty;
-    out->K = K;
     out->ring_ends = ring_ends;
     return out;
   }
 
   // Pairs `keep` only, in that order, with their ring ends and the ends' points.
   std::shared_ptr<Impl> ofPairs(const std::vector<std::size_t>& keep) const {
-    auto out = std::make_shared<Impl>();
-    out->lens = lens;
-    out->distorted = distorted;
-    out->penalty = penalty;
-    out->K = K;
+    auto out = sameCamera();
     out->pairs.reserve(keep.size());
     for (std::size_t i : keep) out->pairs.push_back(pairs[i]);
     if (ring_ends) {
@@ -209,6 +201,16 @@ struct LossEvaluator::Impl {
       out->ring_points.reserve(keep.size());
       for (std::size_t i : keep) out->ring_points.push_back(ring_points[i]);
     }
+    return out;
+  }
+
+  // No pairs yet; the same lens, projection and penalty.
+  std::shared_ptr<Impl> sameCamera() const {
+    auto out = std::make_shared<Impl>();
+    out->lens = lens;
+    out->distorted = distorted;
+    out->penalty = penalty;
+    out->K = K;
     return out;
   }
 

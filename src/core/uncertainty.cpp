@@ -104,6 +104,17 @@ void requireUsableInput(const LossEvaluator& loss, const std::vector<std::size_t
   }
 }
 
+// The centring's outcome with its fitting pairs (sorted indices into the whole evaluator) given
+// as positions in `pairs`, the indices of an evaluator over those pairs alone (ofPairs).
+VerticalCentringOutcome withLocalFitting(const VerticalCentringOutcome& centring, const std::vector<std::size_t>& pairs) {
+  VerticalCentringOutcome out = centring;
+  out.fitting.clear();
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    if (std::binary_search(centring.fitting.begin(), centring.fitting.end(), pairs[k])) out.fitting.push_back(k);
+  }
+  return out;
+}
+
 // Each resample's refinement: the calibration's local refinement with the bootstrap's steps.
 RefineConfig resampleRefineConfig(const UncertaintyConfig& config) {
   RefineConfig refine;
@@ -189,15 +200,7 @@ Uncertainty estimateUncertainty(const LossEvaluator& loss, const Extrinsic& esti
   std::vector<std::size_t> local(pairs.size());
   std::iota(local.begin(), local.end(), std::size_t{0});
   std::optional<VerticalCentringOutcome> local_centring;
-  if (centring) {
-    local_centring = *centring;
-    local_centring->fitting.clear();
-    for (std::size_t k = 0; k < pairs.size(); ++k) {
-      if (std::binary_search(centring->fitting.begin(), centring->fitting.end(), pairs[k])) {
-        local_centring->fitting.push_back(k);
-      }
-    }
-  }
+  if (centring) local_centring = withLocalFitting(*centring, pairs);
   const RefineConfig refine = resampleRefineConfig(config);
   // One thread per resample: a resample's refinement evaluates 12 probes at a time, too few to
   // share well, while the resamples are independent.
