@@ -4,6 +4,7 @@
 
 #include "thermal_lidar_calibration/app/runtime/bad_frame_reporter.hpp"
 
+#include "thermal_lidar_calibration/ros/bag_message_reader.hpp"
 #include "thermal_lidar_calibration/ros/frame_synchronizer.hpp"
 #include "thermal_lidar_calibration/ros/msg_conversion.hpp"
 
@@ -188,19 +189,20 @@ class BagReader {
     std::vector<std::string> wanted = {topics_.image, topics_.mask, topics_.clusters};
     if (topics_.detect) wanted = {topics_.image, topics_.points};
     try {
-      rosbag::View view(bag, rosbag::TopicQuery(wanted));
-      stats_.messages_total = view.size();
-      for (auto it = view.begin(); it != view.end(); ++it) {
+      BagMessageReader reader(bag, wanted, {topics_.clusters, topics_.points});
+      stats_.messages_total = reader.size();
+      BagMessage m;
+      while (reader.next(m)) {
         ++stats_.messages_read;
-        add(*it);
+        add(m);
         if (callbacks_.progress && !callbacks_.progress(stats_, builder_)) {
           stats_.interrupted = true;
           break;
         }
       }
+      if (!reader.damage().empty()) describeDamage(reader.damage());
     } catch (const std::exception& e) {
-      stats_.damage = "the bag could not be read past message " + std::to_string(stats_.messages_read) + " (" +
-                      e.what() + ")";
+      describeDamage(e.what());
     }
     if (!stats_.interrupted) {
       sync_.flush();             // the last frame of the bag counts too
@@ -210,48 +212,50 @@ class BagReader {
   }
 
  private:
-  void add(const rosbag::MessageInstance& m) {
-    try {
-      if (topics_.detect) {
-        addDetected(m);
-      } else if (m.getTopic() == topics_.clusters) {
-        const auto clusters = m.instantiate<sensor_msgs::PointCloud2>();
-        if (clusters) observe(*clusters, m.getTopic());
-        note(m.getTopic(), sync_.addClusters(clusters));
-      } else if (m.getTopic() == topics_.image) {
-        note(m.getTopic(), sync_.addImage(m.instantiate<sensor_msgs::Image>()));
-      } else {
-        note(m.getTopic(), sync_.addMask(m.instantiate<sensor_msgs::Image>()));
-      }
-    } catch (const ros::Exception& e) {
+  void describeDamage(const std::string& what) {
+    stats_.damage = "the bag could not be read past message " + std::to_string(stats_.messages_read) + " (" +
+                    what + ")";
+  }
+
+  void add(const BagMessage& m) {
+    if (!m.undecodable.empty()) {
       // One message could not be deserialised (truncated record): skip it.
       ++stats_.undecodable_messages;
       if (stats_.undecodable_messages == 1 && callbacks_.warn) {
-        callbacks_.warn("cannot deserialise a message on " + m.getTopic() + " (" + e.what() +
+        callbacks_.warn("cannot deserialise a message on " + m.topic + " (" + m.undecodable +
                         "); skipping such messages");
       }
+      return;
+    }
+    if (topics_.detect) {
+      addDetected(m);
+    } else if (m.topic == topics_.clusters) {
+      if (m.cloud) observe(*m.cloud, m.topic);
+      note(m.topic, sync_.addClusters(m.cloud));
+    } else if (m.topic == topics_.image) {
+      note(m.topic, sync_.addImage(m.image));
+    } else {
+      note(m.topic, sync_.addMask(m.image));
     }
   }
 
   // --detect: the detectors make each raw message into what a mask / clusters topic would carry;
   // a message they cannot read is a bad frame like any other.
-  void addDetected(const rosbag::MessageInstance& m) {
+  void addDetected(const BagMessage& m) {
     try {
-      if (m.getTopic() == topics_.points) {
-        const auto cloud = m.instantiate<sensor_msgs::PointCloud2>();
-        if (!cloud) return;
-        const sensor_msgs::PointCloud2::ConstPtr clusters = detectors_->detect(*cloud, m.getTopic()).clusters;
+      if (m.topic == topics_.points) {
+        if (!m.cloud) return;
+        const sensor_msgs::PointCloud2::ConstPtr clusters = detectors_->detect(*m.cloud, m.topic).clusters;
         if (clusters) observe(*clusters, topics_.clusters);
-        note(m.getTopic(), sync_.addClusters(clusters));
+        note(m.topic, sync_.addClusters(clusters));
       } else {
-        const auto image = m.instantiate<sensor_msgs::Image>();
-        if (!image) return;
-        const SegmentedImage seg = detectors_->segment(image, m.getTopic());
-        note(m.getTopic(), sync_.addImage(seg.image));
+        if (!m.image) return;
+        const SegmentedImage seg = detectors_->segment(m.image, m.topic);
+        note(m.topic, sync_.addImage(seg.image));
         note(topics_.mask, sync_.addMask(seg.mask));
       }
     } catch (const std::invalid_argument& e) {
-      reportBad(m.getTime().toSec(), e.what());
+      reportBad(m.time_s, e.what());
     }
   }
 
