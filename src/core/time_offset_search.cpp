@@ -47,6 +47,7 @@ TimeOffsetProfile searchTimeOffset(const LossEvaluator& loss, const Extrinsic& s
   const RefineConfig coarse = coarseRefine(refine);
   int done = 0;
   std::vector<char> visited(n, 0);
+  const auto bestLoss = [&] { return *std::min_element(profile.losses.begin(), profile.losses.end()); };
   const auto refineAt = [&](std::size_t i, const Extrinsic& from) {
     const LossEvaluator at = loss.withTimeOffset(profile.offsets_s[i]);
     const RefineOutcome r = LocalRefinement(at, coarse, threads).run(from, pairs);
@@ -55,8 +56,10 @@ TimeOffsetProfile searchTimeOffset(const LossEvaluator& loss, const Extrinsic& s
     profile.evaluations += r.evaluations;
     visited[i] = 1;
     ++done;
-    const double best = *std::min_element(profile.losses.begin(), profile.losses.end());
-    if (callback && !callback(done, static_cast<int>(n), best)) profile.stopped = true;
+    // A walk near the start ends where the loss stops falling, not at the grid's end: its total
+    // is always one step ahead until it ends (below), so a progress line never shows 3/41 left.
+    const int total = reach == OffsetSearchReach::kNearStart ? done + 1 : static_cast<int>(n);
+    if (callback && !callback(done, total, bestLoss())) profile.stopped = true;
   };
   // Walks from `from` to `to` (inclusive) one grid point at a time, each refined from the pose
   // of the point before it, every `stride`-th point only.
@@ -90,6 +93,7 @@ TimeOffsetProfile searchTimeOffset(const LossEvaluator& loss, const Extrinsic& s
       }
       if (i != origin) break;
     }
+    if (!profile.stopped && callback && !callback(done, done, bestLoss())) profile.stopped = true;
     profile.best = profile.stopped ? origin : lowest();
     return profile;
   }

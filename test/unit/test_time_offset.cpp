@@ -286,13 +286,23 @@ TEST(TimeOffset, ASearchNearTheStartFindsTheWholeRangesMinimumForLess) {
   for (const double start : {0.06, 0.04}) {
     const LossEvaluator loss(fieldsafeCamera(), pairs, LossConfig{5.0, PixelRule::kBilinear, start});
     const TimeOffsetProfile whole = searchTimeOffset(loss, fieldsafeTruth(), all, timing, RefineConfig{}, 1);
-    const TimeOffsetProfile near =
-        searchTimeOffset(loss, fieldsafeTruth(), all, timing, RefineConfig{}, 1, {}, OffsetSearchReach::kNearStart);
+    std::vector<std::pair<int, int>> progress;  // (done, total) as a progress line shows them
+    const TimeOffsetProfile near = searchTimeOffset(
+        loss, fieldsafeTruth(), all, timing, RefineConfig{}, 1,
+        [&](int done, int total, double) {
+          progress.emplace_back(done, total);
+          return true;
+        },
+        OffsetSearchReach::kNearStart);
     EXPECT_NEAR(whole.offsets_s[whole.best], 0.06, 1e-9) << start;
     EXPECT_NEAR(near.offsets_s[near.best], 0.06, 1e-9) << start;
     EXPECT_LT(near.evaluations, whole.evaluations / 2) << start;
     const long visited = std::count_if(near.losses.begin(), near.losses.end(), [](double v) { return std::isfinite(v); });
     EXPECT_EQ(visited, start == 0.06 ? 3 : 4) << start;  // the start, the steps down, one step up
+    // The progress never promises the whole grid and ends complete.
+    ASSERT_FALSE(progress.empty());
+    for (const auto& [done, total] : progress) EXPECT_LT(total, static_cast<int>(whole.offsets_s.size())) << start;
+    EXPECT_EQ(progress.back(), std::make_pair(static_cast<int>(visited), static_cast<int>(visited))) << start;
     if (start == 0.06) {
       EXPECT_EQ(near.poses[near.best].rotation_vector, whole.poses[whole.best].rotation_vector);
       EXPECT_EQ(near.poses[near.best].translation, whole.poses[whole.best].translation);
