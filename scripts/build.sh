@@ -3,7 +3,7 @@
 # src/ holds a symlink to this repository. Prints the workspace path on the last line.
 # Usage: scripts/build.sh [--tests] [--bench]
 #   --tests  also builds the gtest/rostest targets
-#   --bench  also builds the benchmarks, score_raw_detections and score_association (bench/)
+#   --bench  also builds the benchmarks, score_raw_detections, score_association and score_motion (bench/)
 set -euo pipefail
 # shellcheck source=scripts/workspace.sh
 source "$(dirname "${BASH_SOURCE[0]}")/workspace.sh"  # PATH and $repo
