@@ -11,10 +11,17 @@ namespace {
 // a bag recorded with rosbag's default 768 KB chunks holds a few images per chunk, so with 48
 // messages a turn that repeats about a tenth of the decompression.
 constexpr std::uint64_t kBlock = 48;
-// Messages a lane holds ready: its next turn while the consumer reads the other lane's.
-constexpr std::size_t kReadAhead = 2 * kBlock;
+// What a lane holds ready: its next turn while the consumer reads the other lane's, and no more
+// than kReadAheadBytes of message data (a raw cloud is 2 MB, and a lane that runs ahead only
+// spends memory: the consumer sets the pace).
+constexpr std::size_t kReadAhead = kBlock;
+constexpr std::size_t kReadAheadBytes = std::size_t{16} << 20;
 
 std::size_t laneOf(std::uint64_t index, std::size_t lanes) { return (index / kBlock) % lanes; }
+
+std::size_t dataBytes(const BagMessage& m) {
+  return (m.image ? m.image->data.size() : 0) + (m.cloud ? m.cloud->data.size() : 0);
+}
 
 }  // namespace
 
@@ -70,6 +77,7 @@ bool BagMessageReader::next(BagMessage& out) {
   }
   out = std::move(lane.queue.front());
   lane.queue.pop_front();
+  lane.queued_bytes -= dataBytes(out);
   ++taken_;
   changed_.notify_all();
   return true;
@@ -94,9 +102,15 @@ BagMessage BagMessageReader::load(const rosbag::MessageInstance& m) const {
 }
 
 bool BagMessageReader::push(Lane& lane, BagMessage message) {
+  const std::size_t bytes = dataBytes(message);
   std::unique_lock<std::mutex> lock(mutex_);
-  changed_.wait(lock, [&] { return lane.queue.size() < kReadAhead || stopping_; });
+  // An empty queue always takes the next message, however large: the consumer may be waiting.
+  changed_.wait(lock, [&] {
+    return stopping_ || lane.queue.empty() ||
+           (lane.queue.size() < kReadAhead && lane.queued_bytes + bytes <= kReadAheadBytes);
+  });
   if (stopping_) return false;
+  lane.queued_bytes += bytes;
   lane.queue.push_back(std::move(message));
   changed_.notify_all();
   return true;

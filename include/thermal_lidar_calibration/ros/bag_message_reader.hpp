@@ -55,6 +55,7 @@ class BagMessageReader {
     std::unique_ptr<rosbag::Bag> own_bag;  // the lanes after the first
     std::unique_ptr<rosbag::View> view;
     std::deque<BagMessage> queue;
+    std::size_t queued_bytes = 0;  // the queue's message data
     bool done = false;  // read its last message, or could not go on (damage)
     std::string damage;
     std::thread thread;
