@@ -13,6 +13,7 @@
 #include "thermal_lidar_calibration/synthetic/synthetic_rig.hpp"
 #include "thermal_lidar_calibration/tools/make_synthetic_bag_options.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -57,7 +58,8 @@ int main(int argc, char** argv) {
       const tlc::synthetic::SyntheticFrame f = rig.render(i);
       scans.push_back(tlc::summariseScan(f.stamp_s, f.cluster_points, f.cluster_labels, f.cluster_time_s));
     }
-    ErrorSum all, left, right, near, mid, far, unmeasured;
+    ErrorSum all, left, right, near, mid, far;
+    int unmeasured = 0;
     const tlc::MotionConfig motion;
     for (std::size_t i = 0; i < scans.size(); ++i) {
       const std::vector<tlc::PersonMotion> m = tlc::estimateMotion(scans, i, motion);
@@ -65,7 +67,7 @@ int main(int argc, char** argv) {
         const tlc::ScanPeople::Person& p = scans[i].people[k];
         if (p.label < 1 || p.label > static_cast<int>(rig.scene().people().size())) continue;  // a false cluster
         if (!m[k].measured()) {
-          unmeasured.add(0.0, 0.0);
+          ++unmeasured;
           continue;
         }
         const Eigen::Vector3d truth = rig.personMotion(p.label, p.time_s).velocity_mps;
@@ -83,7 +85,7 @@ int main(int argc, char** argv) {
     near.print("range < 10 m");
     mid.print("range 10-20 m");
     far.print("range >= 20 m");
-    std::printf("%-22s %6d\n", "not measured", unmeasured.n);
+    std::printf("%-22s %6d\n", "not measured", unmeasured);
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "score_motion: %s\n", e.what());

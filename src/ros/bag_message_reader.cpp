@@ -71,16 +71,20 @@ bool BagMessageReader::next(BagMessage& out) {
   Lane& lane = *lanes_[laneOf(taken_, lanes_.size())];
   std::unique_lock<std::mutex> lock(mutex_);
   changed_.wait(lock, [&lane] { return !lane.queue.empty() || lane.done; });
-  if (lane.queue.empty()) {  // this lane, which holds the next message, has none
-    damage_ = lane.damage;
-    return false;
-  }
+  if (lane.queue.empty()) return false;  // this lane, which holds the next message, has none
   out = std::move(lane.queue.front());
   lane.queue.pop_front();
   lane.queued_bytes -= dataBytes(out);
   ++taken_;
   changed_.notify_all();
   return true;
+}
+
+std::string BagMessageReader::damage() {
+  // The lane that holds the message next() hands out next; empty while that lane still reads.
+  const Lane& lane = *lanes_[laneOf(taken_, lanes_.size())];
+  std::lock_guard<std::mutex> lock(mutex_);
+  return lane.done && lane.queue.empty() ? lane.damage : std::string();
 }
 
 // A message that cannot be deserialised (a truncated record, a damaged chunk) is passed on as

@@ -26,29 +26,32 @@ namespace {
 const std::vector<std::string> kTopics = {"/image", "/mask", "/clusters"};
 const std::vector<std::string> kClouds = {"/clusters"};
 
-// Each message carries its number in frame_id ("m<number>"), so that order and content can be
-// checked after any reading.
-sensor_msgs::Image image(int number, double stamp_s) {
-  sensor_msgs::Image m;
+// Each message carries its number in frame_id ("m<number>") and data, so that order and content
+// can be checked after any reading.
+template <typename Message>
+Message numbered(int number, double stamp_s, std::size_t bytes) {
+  Message m;
   m.header.stamp.fromSec(stamp_s);
   m.header.frame_id = "m" + std::to_string(number);
+  m.data.assign(bytes, static_cast<std::uint8_t>(number));
+  return m;
+}
+
+sensor_msgs::Image image(int number, double stamp_s) {
+  auto m = numbered<sensor_msgs::Image>(number, stamp_s, 32);
   m.height = 4;
   m.width = 8;
   m.encoding = "mono8";
   m.step = 8;
-  m.data.assign(32, static_cast<std::uint8_t>(number));
   return m;
 }
 
 sensor_msgs::PointCloud2 cloud(int number, double stamp_s) {
-  sensor_msgs::PointCloud2 m;
-  m.header.stamp.fromSec(stamp_s);
-  m.header.frame_id = "m" + std::to_string(number);
+  auto m = numbered<sensor_msgs::PointCloud2>(number, stamp_s, 12);
   m.height = 1;
   m.width = 3;
   m.point_step = 4;
   m.row_step = 12;
-  m.data.assign(12, static_cast<std::uint8_t>(number));
   return m;
 }
 

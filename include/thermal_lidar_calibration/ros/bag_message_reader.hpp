@@ -48,7 +48,7 @@ class BagMessageReader {
   // The next message in bag order; false at the end, or where the bag could not be read past
   // (then damage() says why).
   bool next(BagMessage& out);
-  const std::string& damage() const { return damage_; }  // read once next() returned false
+  std::string damage();  // why next() returned false; empty at the end or while reading goes on
 
  private:
   struct Lane {
@@ -71,7 +71,6 @@ class BagMessageReader {
   std::mutex mutex_;
   std::condition_variable changed_;
   bool stopping_ = false;  // the consumer is gone
-  std::string damage_;
   std::vector<std::unique_ptr<Lane>> lanes_;
 };
 
