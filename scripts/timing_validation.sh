@@ -8,7 +8,7 @@
 # Cases (FieldSAFE-like rig unless named; field speed profile, half the people walking):
 #   fs_late60 fs_early40 fs_sync        camera 60 ms late / 40 ms early / synchronised
 #   ms2_late60 ms2_early40 ms2_sync     the MS2-like car (config/ms2.yaml)
-#   fs_endstamp60                       60 ms late, end-of-scan stamps with per-point times
+#   fs_endstamp60 ms2_endstamp60        60 ms late, end-of-scan stamps with per-point times
 #   fs_sweep60                          60 ms late, end-of-scan stamps, no per-point times
 #   fs_raw60                            60 ms late, raw sensors (--raw, calibrate_bag --detect)
 #   fs_raw_sync                         raw sensors, synchronised: what fs_raw60 compares with
@@ -26,7 +26,7 @@ set -euo pipefail
 # shellcheck source=scripts/workspace.sh
 source "$(dirname "${BASH_SOURCE[0]}")/workspace.sh"
 prepare_workspace_unless_bin  # TLC_BIN: executables already built
-cases="fs_late60 fs_early40 fs_sync ms2_late60 ms2_early40 ms2_sync fs_endstamp60 fs_sweep60 fs_raw60 fs_raw_sync fs_steady60"
+cases="fs_late60 fs_early40 fs_sync ms2_late60 ms2_early40 ms2_sync fs_endstamp60 ms2_endstamp60 fs_sweep60 fs_raw60 fs_raw_sync fs_steady60"
 noises="clean realistic"
 wanted="default none"
 frames=""
@@ -56,6 +56,7 @@ generator() {  # case -> make_synthetic_bag flags
     ms2_early40) echo "--rig ms2 ${drive[*]} --camera-time-offset -0.04" ;;
     ms2_sync) echo "--rig ms2 ${drive[*]}" ;;
     fs_endstamp60) echo "--rig fieldsafe ${drive[*]} --camera-time-offset 0.06 --lidar-stamp end --lidar-point-time" ;;
+    ms2_endstamp60) echo "--rig ms2 ${drive[*]} --camera-time-offset 0.06 --lidar-stamp end --lidar-point-time" ;;
     fs_sweep60) echo "--rig fieldsafe ${drive[*]} --camera-time-offset 0.06 --lidar-stamp end" ;;
     fs_raw60) echo "--rig fieldsafe ${drive[*]} --camera-time-offset 0.06 --raw" ;;
     fs_raw_sync) echo "--rig fieldsafe ${drive[*]} --raw" ;;
