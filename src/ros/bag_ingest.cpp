@@ -200,7 +200,8 @@ class BagReader {
           break;
         }
       }
-      if (!reader.damage().empty()) describeDamage(reader.damage());
+      const std::string damage = reader.damage();
+      if (!damage.empty()) describeDamage(damage);
     } catch (const std::exception& e) {
       describeDamage(e.what());
     }
