@@ -140,6 +140,18 @@ PreparedPair::PreparedPair(const CalibrationPair& pair, std::optional<double> ti
     m->vy[i] = pair.point_velocity[i].y();
     m->vz[i] = pair.point_velocity[i].z();
   }
+  if (pair.turn_rate_rps != 0.0) {
+    m->ax.resize(count);
+    m->ay.resize(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      const Eigen::Vector3f a = turnAcceleration(pair.point_velocity[i], pair.turn_rate_rps);
+      const float lead = static_cast<float>(leadTimeS(pair, i));
+      m->ax[i] = a.x();
+      m->ay[i] = a.y();
+      m->vx[i] += a.x() * lead;
+      m->vy[i] += a.y() * lead;
+    }
+  }
   motion = std::move(m);
   moveTo(*time_offset_s);
 }
@@ -152,6 +164,13 @@ void PreparedPair::moveTo(double time_offset_s) {
     x[i] = m.base_x[i] + d * m.vx[i];
     y[i] = m.base_y[i] + d * m.vy[i];
     z[i] = m.base_z[i] + d * m.vz[i];
+  }
+  if (!m.ax.empty()) {
+    const float half_d2 = 0.5f * d * d;
+    for (std::size_t i = 0; i < count; ++i) {
+      x[i] += half_d2 * m.ax[i];
+      y[i] += half_d2 * m.ay[i];
+    }
   }
   bound();
 }

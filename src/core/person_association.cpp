@@ -148,6 +148,7 @@ std::optional<CalibrationPair> associatedPair(const CalibrationPair& frame, cons
   pair.mask = frame.mask.empty() ? binarizeMask(frame.regions) : frame.mask;
   pair.image = frame.image;
   pair.cloud_stamp_s = frame.cloud_stamp_s;
+  pair.turn_rate_rps = frame.turn_rate_rps;
   pair.rule = PairRule::kAssociation;
   pair.candidate_index = frame.candidate_index;
   pair.people = static_cast<int>(keep.size());

@@ -1,5 +1,7 @@
 #include "thermal_lidar_calibration/core/person_motion.hpp"
 
+#include <Eigen/Cholesky>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -17,9 +19,16 @@ constexpr double kTrackedGateM = 0.6;
 // exactly).
 constexpr double kSameMisfitM = 1e-6;
 
+// A track's bend is read over this many scans on each side (when found), its velocity over
+// MotionConfig::window_scans: a parabola's curvature from five scans is about 50 times the
+// centroid noise in m/s^2, from nine about 11 times (a 2 m/s tractor's 0.1 rad/s turn bends
+// its tracks by 0.2 m/s^2).
+constexpr int kBendScans = 4;
+
 struct Track {
   std::vector<double> t;
   std::vector<Eigen::Vector3d> c;
+  std::vector<int> order;  // 0: the pair's own scan; k: the k-th found on its side
   int misses = 0;  // consecutive scans without it, in the current direction
   bool active = true;
   int found = 0;   // scans found in the current direction
@@ -61,6 +70,47 @@ void fitLine(const Track& track, double centroid_noise_m, Eigen::Vector3d& veloc
     sigma = (ss / static_cast<double>(n - 2)).cwiseSqrt().cwiseMax(0.5 * centroid_noise_m);
   }
   std_error = sigma / std::sqrt(stt);
+}
+
+// The horizontal acceleration of a parabola through the track's centroids (least squares), when
+// the track has scans on both sides of its first (the pair's own) and at least four: with scans
+// on one side only the bend is an extrapolation. `weight`: how well the scans' times pin the
+// curvature (the inverse of its variance for a unit centroid noise). False otherwise.
+bool fitBend(const Track& track, Eigen::Vector2d& acceleration, double& weight) {
+  if (track.t.size() < 4) return false;
+  const double t0 = track.t[0];
+  bool before = false, after = false;
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  Eigen::Matrix<double, 3, 2> B = Eigen::Matrix<double, 3, 2>::Zero();
+  for (std::size_t k = 0; k < track.t.size(); ++k) {
+    const double s = track.t[k] - t0;
+    before |= s < 0.0;
+    after |= s > 0.0;
+    const Eigen::Vector3d f(1.0, s, 0.5 * s * s);
+    A += f * f.transpose();
+    B += f * track.c[k].head<2>().transpose();
+  }
+  if (!before || !after) return false;
+  const Eigen::LDLT<Eigen::Matrix3d> ldlt(A);
+  if (ldlt.info() != Eigen::Success) return false;
+  acceleration = ldlt.solve(B).row(2).transpose();
+  weight = 1.0 / ldlt.solve(Eigen::Vector3d::UnitZ()).z();
+  return acceleration.allFinite() && std::isfinite(weight) && weight > 0.0;
+}
+
+// The yaw rate w that best explains the bends a_i = w (v_y, -v_x) (the turn of each horizontal
+// velocity, -w z x v) over the people with one: the weighted least-squares slope through the
+// origin, each bend weighed by how well its track pins it (fitBend); 0 without any. Pooled
+// because one person's bend is noisy; a walker's own turning adds a little noise.
+double turnRate(const std::vector<Eigen::Vector2d>& bends, const std::vector<Eigen::Vector2d>& velocities,
+                const std::vector<double>& weights) {
+  double num = 0.0, den = 0.0;
+  for (std::size_t i = 0; i < bends.size(); ++i) {
+    const Eigen::Vector2d jv(velocities[i].y(), -velocities[i].x());
+    num += weights[i] * bends[i].dot(jv);
+    den += weights[i] * jv.squaredNorm();
+  }
+  return den > 0.0 ? num / den : 0.0;
 }
 
 Eigen::Vector3d predict(const Track& track, double t, const Eigen::Vector3d& common_shift,
@@ -204,6 +254,7 @@ std::vector<PersonMotion> estimateMotion(const std::vector<ScanPeople>& scans, s
   for (std::size_t i = 0; i < own.people.size(); ++i) {
     tracks[i].t.push_back(own.people[i].time_s);
     tracks[i].c.push_back(own.people[i].centroid);
+    tracks[i].order.push_back(0);
   }
 
   for (const int dir : {-1, 1}) {
@@ -261,7 +312,8 @@ std::vector<PersonMotion> estimateMotion(const std::vector<ScanPeople>& scans, s
         track.t.push_back(scan.people[o.candidate].time_s);
         track.c.push_back(scan.people[o.candidate].centroid);
         track.misses = 0;
-        if (++track.found >= config.window_scans) track.active = false;
+        track.order.push_back(++track.found);
+        if (track.found >= std::max(config.window_scans, kBendScans)) track.active = false;
       }
       for (std::size_t i = 0; i < tracks.size(); ++i) {
         // One scan without the person (hidden behind another, missed by the detector) is
@@ -273,10 +325,32 @@ std::vector<PersonMotion> estimateMotion(const std::vector<ScanPeople>& scans, s
 
   std::vector<PersonMotion> out(own.people.size());
   for (std::size_t i = 0; i < own.people.size(); ++i) {
+    // The velocity from the window's scans only, as found on each side.
+    Track inner;
+    for (std::size_t k = 0; k < tracks[i].t.size(); ++k) {
+      if (tracks[i].order[k] > config.window_scans) continue;
+      inner.t.push_back(tracks[i].t[k]);
+      inner.c.push_back(tracks[i].c[k]);
+    }
     out[i].label = own.people[i].label;
-    out[i].scans = static_cast<int>(tracks[i].t.size());
+    out[i].scans = static_cast<int>(inner.t.size());
     if (out[i].scans < 2) continue;
-    fitLine(tracks[i], config.centroid_noise_m, out[i].velocity_mps, out[i].std_error_mps);
+    fitLine(inner, config.centroid_noise_m, out[i].velocity_mps, out[i].std_error_mps);
+  }
+  std::vector<Eigen::Vector2d> bends, velocities;
+  std::vector<double> weights;
+  for (std::size_t i = 0; i < own.people.size(); ++i) {
+    Eigen::Vector2d a;
+    double weight = 0.0;
+    if (out[i].measured() && fitBend(tracks[i], a, weight)) {
+      bends.push_back(a);
+      velocities.push_back(out[i].velocity_mps.head<2>());
+      weights.push_back(weight);
+    }
+  }
+  const double w = turnRate(bends, velocities, weights);
+  for (PersonMotion& m : out) {
+    if (m.measured()) m.turn_rate_rps = w;
   }
   return out;
 }

@@ -22,6 +22,10 @@ void attachMotion(CalibrationPair& pair, std::vector<PersonMotion> motion) {
   for (const PersonMotion& m : motion) {
     if (m.measured()) by_label[m.label] = deskewVelocity(m).cast<float>();
   }
+  pair.turn_rate_rps = 0.0;
+  for (const PersonMotion& m : motion) {
+    if (m.measured()) pair.turn_rate_rps = m.turn_rate_rps;
+  }
   pair.point_velocity.assign(pair.points.size(), Eigen::Vector3f::Zero());
   for (std::size_t i = 0; i < pair.points.size() && i < pair.labels.size(); ++i) {
     const auto it = by_label.find(pair.labels[i]);
@@ -35,12 +39,19 @@ double leadTimeS(const CalibrationPair& pair, std::size_t point) {
   return pair.stamp_s - pair.cloud_stamp_s - point_time;
 }
 
+Eigen::Vector3f turnAcceleration(const Eigen::Vector3f& velocity, double turn_rate_rps) {
+  const float w = static_cast<float>(turn_rate_rps);
+  return Eigen::Vector3f(w * velocity.y(), -w * velocity.x(), 0.0f);
+}
+
 std::vector<Eigen::Vector3f> pointsAtImageTime(const CalibrationPair& pair, double time_offset_s) {
   if (!hasMeasuredMotion(pair)) return pair.points;
   std::vector<Eigen::Vector3f> out(pair.points.size());
   for (std::size_t i = 0; i < pair.points.size(); ++i) {
     const double dt = leadTimeS(pair, i) + time_offset_s;
-    out[i] = (pair.points[i].cast<double>() + pair.point_velocity[i].cast<double>() * dt).cast<float>();
+    const Eigen::Vector3d a = turnAcceleration(pair.point_velocity[i], pair.turn_rate_rps).cast<double>();
+    out[i] = (pair.points[i].cast<double>() + pair.point_velocity[i].cast<double>() * dt + 0.5 * a * dt * dt)
+                 .cast<float>();
   }
   return out;
 }

@@ -1,5 +1,6 @@
 // Hand-computed psi (Eq. 2) and Eq. (1)/(3) cases.
 #include "thermal_lidar_calibration/core/loss.hpp"
+#include "thermal_lidar_calibration/core/person_timing.hpp"
 
 #include <gtest/gtest.h>
 
@@ -111,6 +112,31 @@ TEST(Psi, AMarginAndATimeOffsetCombineInEitherOrder) {
   EXPECT_NEAR(timed.withMargin(1.0).withTimeOffset(0.05).pairLoss(0, Extrinsic{}), 4.0, 1e-4);
   EXPECT_NEAR(timed.withMargin(1.0).pairLoss(0, Extrinsic{}), 9.0, 1e-4);  // still at delta 0
   EXPECT_NEAR(timed.withTimeOffset(0.05).withOutline(0.0).pairLoss(0, Extrinsic{}), 5.0, 1e-4);
+}
+
+TEST(Psi, ATurningPairsPointsMoveAsTheyDoAtTheImagesInstant) {
+  // With a turn rate the points move on p + v T + a T^2 / 2 (a = w (v_y, -v_x, 0)); the evaluator
+  // moved to an offset must read exactly what the points moved there by pointsAtImageTime read.
+  CalibrationPair pair = pairWith({{0.0f, 0.0f, 1.0f}, {0.02f, 0.01f, 1.0f}});
+  pair.labels = {1, 1};
+  pair.point_velocity = {{2.0f, 1.0f, 0.0f}, {2.0f, 1.0f, 0.0f}};
+  pair.point_time_s = {-0.05f, -0.04f};
+  pair.turn_rate_rps = 3.0;  // a large turn, so the bend is many pixels
+  const LossEvaluator timed(smallCamera(), {pair}, LossConfig{5.0, PixelRule::kBilinear, 0.0});
+  for (const double delta : {-0.04, 0.0, 0.06, 0.11}) {
+    CalibrationPair moved = pair;
+    moved.points = pointsAtImageTime(pair, delta);
+    moved.point_velocity.clear();
+    const LossEvaluator at(smallCamera(), {moved}, LossConfig{5.0, PixelRule::kBilinear});
+    EXPECT_NEAR(timed.withTimeOffset(delta).pairLoss(0, Extrinsic{}), at.pairLoss(0, Extrinsic{}), 1e-3) << delta;
+  }
+  // And the bend is there: without the turn the points read elsewhere.
+  CalibrationPair straight = pair;
+  straight.turn_rate_rps = 0.0;
+  const LossEvaluator lines(smallCamera(), {straight}, LossConfig{5.0, PixelRule::kBilinear, 0.0});
+  EXPECT_GT(std::abs(lines.withTimeOffset(0.11).pairLoss(0, Extrinsic{}) -
+                     timed.withTimeOffset(0.11).pairLoss(0, Extrinsic{})),
+            0.5);
 }
 
 TEST(Psi, FarAwayProjectionsStayFinite) {

@@ -2,6 +2,7 @@
 // drives, walkers, a person lost for a scan, people side by side, a person seen once.
 
 #include "thermal_lidar_calibration/core/person_motion.hpp"
+#include "thermal_lidar_calibration/core/person_timing.hpp"
 
 #include "thermal_lidar_calibration/core/random.hpp"
 
@@ -109,6 +110,46 @@ TEST(PersonMotion, AWalkerSeenFromATurningVehicleIsMeasuredAtItsScan) {
   // The stated error is of the size of the error made (centroid noise 2 cm over 0.4 s).
   EXPECT_GT(w.std_error_mps.x(), 0.0);
   EXPECT_LT(w.std_error_mps.x(), 0.2);
+}
+
+TEST(PersonMotion, AStraightDriveReadsNoTurn) {
+  const std::vector<Trajectory> people{standingSeenFromVehicle({12, 3}, 2.5, 0.0),
+                                       standingSeenFromVehicle({15, -4}, 2.5, 0.0)};
+  const auto motions = estimateMotion(scansOf(people, 9, 0.0), 4, MotionConfig{});
+  for (const PersonMotion& m : motions) EXPECT_NEAR(m.turn_rate_rps, 0.0, 1e-6);
+}
+
+TEST(PersonMotion, ATurningCarsRateIsReadAndItsPeopleAreMovedOnTheirArcs) {
+  // A car at 5 m/s in a 15 m turn (0.33 rad/s) past three standing people: each track bends by
+  // -w x v. The points of the middle scan (t = 0.4 s) moved to an image 110 ms later (a sweep
+  // stamped at its end, images 60 ms late) must land where the people are then.
+  const double w = 5.0 / 15.0;
+  const std::vector<Trajectory> people{standingSeenFromVehicle({12, 3}, 5.0, w),
+                                       standingSeenFromVehicle({9, -2}, 5.0, w),
+                                       standingSeenFromVehicle({16, 6}, 5.0, w)};
+  const auto motions = estimateMotion(scansOf(people, 9, 0.0), 4, MotionConfig{});
+  ASSERT_EQ(motions.size(), 3u);
+  for (const PersonMotion& m : motions) EXPECT_NEAR(m.turn_rate_rps, w, 0.01);
+
+  CalibrationPair pair;
+  pair.cloud_stamp_s = 0.4;
+  pair.stamp_s = 0.4;
+  for (std::int32_t k = 0; k < 3; ++k) {
+    pair.points.push_back(people[static_cast<std::size_t>(k)](0.4).cast<float>());
+    pair.labels.push_back(40 + k);
+  }
+  attachMotion(pair, motions);
+  EXPECT_NEAR(pair.turn_rate_rps, w, 0.01);
+  const double lead = 0.11;
+  const std::vector<Eigen::Vector3f> moved = pointsAtImageTime(pair, lead);
+  CalibrationPair straight = pair;
+  straight.turn_rate_rps = 0.0;
+  const std::vector<Eigen::Vector3f> along_lines = pointsAtImageTime(straight, lead);
+  for (std::size_t k = 0; k < 3; ++k) {
+    const Eigen::Vector3f truth = people[k](0.4 + lead).cast<float>();
+    EXPECT_LT((moved[k] - truth).head<2>().norm(), 0.002) << k;        // on the arc
+    EXPECT_GT((along_lines[k] - truth).head<2>().norm(), 0.008) << k;  // the straight line misses it
+  }
 }
 
 TEST(PersonMotion, APersonLostForAScanIsBridgedAndTwoScansInARowEndTheTrack) {

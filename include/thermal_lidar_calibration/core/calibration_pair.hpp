@@ -52,6 +52,9 @@ struct CalibrationPair {
   double cloud_stamp_s = 0.0;
   std::vector<float> point_time_s;
   std::vector<Eigen::Vector3f> point_velocity;
+  // The vehicle's yaw rate about the LiDAR's z axis (PersonMotion::turn_rate_rps): the velocities
+  // turn with it, so a point moves on p + v T + a T^2 / 2 with a = w (v_y, -v_x, 0).
+  double turn_rate_rps = 0.0;
   std::vector<PersonMotion> motion;     // per person (label) of the pair: how it was measured
   // Issue 23. The rule that made the pair; the frame's place among the synchronized candidate
   // frames offered (skipped ones included: the skip rule for association pairs); and, for a

@@ -69,8 +69,10 @@ struct PreparedPair {
   double radius = 0.0;
   // With motion: the points at the image stamp (delta = 0) and their velocities, unpadded; null
   // without. Shared by the evaluators of other offsets, which only move x, y, z.
+  // With the vehicle turning (CalibrationPair::turn_rate_rps) the velocity at delta = 0 is the
+  // point's v + a T0 (T0 its lead time) and a = ax, ay the bend; without, ax and ay are empty.
   struct Motion {
-    std::vector<float> base_x, base_y, base_z, vx, vy, vz;
+    std::vector<float> base_x, base_y, base_z, vx, vy, vz, ax, ay;
   };
   std::shared_ptr<const Motion> motion;
   PreparedPair(const CalibrationPair& pair, std::optional<double> time_offset_s);

@@ -29,14 +29,20 @@ Eigen::Vector3d deskewVelocityStdError(const PersonMotion& motion);
 // The pair carries one velocity per point (some may be zero: people not measured).
 bool hasMeasuredMotion(const CalibrationPair& pair);
 
-// Sets pair.motion and pair.point_velocity (deskewVelocity) from each point's label (people
-// without a measurement, or labels not in `motion`, get zero velocity).
+// Sets pair.motion, pair.point_velocity (deskewVelocity) from each point's label (people
+// without a measurement, or labels not in `motion`, get zero velocity) and pair.turn_rate_rps
+// (the measured people's, 0 without any).
 void attachMotion(CalibrationPair& pair, std::vector<PersonMotion> motion);
 
 // The seconds from point i's capture to the image's stamp: t - cloud_stamp - point_time[i].
 double leadTimeS(const CalibrationPair& pair, std::size_t point);
 
-// The pair's points at the image's instant for `time_offset_s` (as captured without motion).
+// The bend of a point moving at `velocity` while the vehicle turns at `turn_rate_rps`: the
+// acceleration w (v_y, -v_x, 0) (PersonMotion::turn_rate_rps).
+Eigen::Vector3f turnAcceleration(const Eigen::Vector3f& velocity, double turn_rate_rps);
+
+// The pair's points at the image's instant for `time_offset_s` (as captured without motion):
+// p + v T + turnAcceleration(v) T^2 / 2, T = leadTimeS + time_offset_s.
 std::vector<Eigen::Vector3f> pointsAtImageTime(const CalibrationPair& pair, double time_offset_s);
 
 // Copies of the pairs with their points at the image's instant (masks and images shared): what
