@@ -19,12 +19,11 @@ bool hasMeasuredMotion(const CalibrationPair& pair) {
 
 void attachMotion(CalibrationPair& pair, std::vector<PersonMotion> motion) {
   std::map<std::int32_t, Eigen::Vector3f> by_label;
-  for (const PersonMotion& m : motion) {
-    if (m.measured()) by_label[m.label] = deskewVelocity(m).cast<float>();
-  }
   pair.turn_rate_rps = 0.0;
   for (const PersonMotion& m : motion) {
-    if (m.measured()) pair.turn_rate_rps = m.turn_rate_rps;
+    if (!m.measured()) continue;
+    by_label[m.label] = deskewVelocity(m).cast<float>();
+    pair.turn_rate_rps = m.turn_rate_rps;  // the scan's, the same for every measured person
   }
   pair.point_velocity.assign(pair.points.size(), Eigen::Vector3f::Zero());
   for (std::size_t i = 0; i < pair.points.size() && i < pair.labels.size(); ++i) {
